@@ -1,0 +1,278 @@
+/* ----------------------------------------------------------------------
+   USER-TLSPH: internal fix TLSPH_BONDS, see fix_tlsph_bonds.h
+------------------------------------------------------------------------- */
+
+#include "fix_tlsph_bonds.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "memory.h"
+#include "neigh_list.h"
+#include "neigh_request.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+FixTLSPHBonds::FixTLSPHBonds(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), npartner(nullptr), nintact0(nullptr), partner(nullptr), state(nullptr),
+    work_hg(nullptr), work_visc(nullptr), list(nullptr)
+{
+  if (narg != 3) error->all(FLERR, "Illegal fix TLSPH_BONDS command: it takes no arguments");
+  restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  first = 1;
+  rebuild = 1;
+  cutoff = 0.0;
+  nbonds_total = 0;
+
+  // placeholder size until the partners are known
+  maxpartner = 1;
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nmax; i++) {
+    npartner[i] = 0;
+    nintact0[i] = 0;
+    work_hg[i] = work_visc[i] = 0.0;
+  }
+}
+
+FixTLSPHBonds::~FixTLSPHBonds()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(npartner);
+  memory->destroy(nintact0);
+  memory->destroy(partner);
+  memory->destroy(state);
+  memory->destroy(work_hg);
+  memory->destroy(work_visc);
+}
+
+int FixTLSPHBonds::setmask()
+{
+  return POST_NEIGHBOR | MIN_POST_NEIGHBOR;
+}
+
+void FixTLSPHBonds::init()
+{
+  if (!first) return;
+  // an occasional full list, used once to find the reference partners
+  int irequest = neighbor->request(this, instance_me);
+  neighbor->requests[irequest]->pair = 0;
+  neighbor->requests[irequest]->fix = 1;
+  neighbor->requests[irequest]->half = 0;
+  neighbor->requests[irequest]->full = 1;
+  neighbor->requests[irequest]->occasional = 1;
+}
+
+void FixTLSPHBonds::init_list(int /*id*/, NeighList *ptr)
+{
+  list = ptr;
+}
+
+void FixTLSPHBonds::setup_post_neighbor()
+{
+  if (first) find_partners();
+  rebuild = 1;
+}
+
+void FixTLSPHBonds::post_neighbor()
+{
+  rebuild = 1;
+}
+
+void FixTLSPHBonds::min_post_neighbor()
+{
+  rebuild = 1;
+}
+
+/* ----------------------------------------------------------------------
+   partners: every other atom within the reference support |X_j - X_i| < 2h
+------------------------------------------------------------------------- */
+
+void FixTLSPHBonds::find_partners()
+{
+  if (cutoff <= 0.0) error->all(FLERR, "TLSPH_BONDS: search radius not set by pair tlsph");
+  first = 0;
+  neighbor->build_one(list);
+
+  double **x0 = atom->x0;
+  tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  const int inum = list->inum;
+  int *ilist = list->ilist;
+  int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  const double cutsq = cutoff * cutoff;
+
+  auto within = [&](int i, int j) {
+    double d[3] = {x0[j][0] - x0[i][0], x0[j][1] - x0[i][1], x0[j][2] - x0[i][2]};
+    domain->minimum_image(d[0], d[1], d[2]);
+    const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    return rsq < cutsq && rsq > 0.0;
+  };
+
+  for (int i = 0; i < nlocal; i++) npartner[i] = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    int *jlist = firstneigh[i];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      if (within(i, j)) npartner[i]++;
+    }
+  }
+  int mymax = 1;
+  for (int i = 0; i < nlocal; i++) mymax = MAX(mymax, npartner[i]);
+  MPI_Allreduce(&mymax, &maxpartner, 1, MPI_INT, MPI_MAX, world);
+
+  memory->destroy(partner);
+  memory->destroy(state);
+  memory->create(partner, atom->nmax, maxpartner, "tlsph/bonds:partner");
+  memory->create(state, atom->nmax, maxpartner, "tlsph/bonds:state");
+
+  bigint nmine = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    int *jlist = firstneigh[i];
+    int n = 0;
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      if (!within(i, j)) continue;
+      partner[i][n] = tag[j];
+      state[i][n] = INTACT;
+      n++;
+    }
+    npartner[i] = n;
+    nintact0[i] = n;
+    nmine += n;
+  }
+  MPI_Allreduce(&nmine, &nbonds_total, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (comm->me == 0)
+    utils::logmesg(lmp, "TLSPH bonds: {} reference partners in total (max {} per particle)\n",
+                   nbonds_total, maxpartner);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixTLSPHBonds::memory_usage()
+{
+  const double n = atom->nmax;
+  return 2.0 * n * (sizeof(int) + sizeof(double)) + n * maxpartner * (sizeof(tagint) + sizeof(int));
+}
+
+void FixTLSPHBonds::grow_arrays(int nmax)
+{
+  memory->grow(npartner, nmax, "tlsph/bonds:npartner");
+  memory->grow(nintact0, nmax, "tlsph/bonds:nintact0");
+  memory->grow(partner, nmax, maxpartner, "tlsph/bonds:partner");
+  memory->grow(state, nmax, maxpartner, "tlsph/bonds:state");
+  memory->grow(work_hg, nmax, "tlsph/bonds:work_hg");
+  memory->grow(work_visc, nmax, "tlsph/bonds:work_visc");
+}
+
+void FixTLSPHBonds::set_arrays(int i)
+{
+  // an atom created after the bonds were found has no partners
+  npartner[i] = 0;
+  nintact0[i] = 0;
+  work_hg[i] = work_visc[i] = 0.0;
+}
+
+void FixTLSPHBonds::copy_arrays(int i, int j, int /*delflag*/)
+{
+  npartner[j] = npartner[i];
+  nintact0[j] = nintact0[i];
+  work_hg[j] = work_hg[i];
+  work_visc[j] = work_visc[i];
+  for (int m = 0; m < npartner[j]; m++) {
+    partner[j][m] = partner[i][m];
+    state[j][m] = state[i][m];
+  }
+}
+
+int FixTLSPHBonds::pack_exchange(int i, double *buf)
+{
+  int m = 0;
+  buf[m++] = npartner[i];
+  buf[m++] = nintact0[i];
+  buf[m++] = work_hg[i];
+  buf[m++] = work_visc[i];
+  for (int n = 0; n < npartner[i]; n++) {
+    buf[m++] = ubuf(partner[i][n]).d;
+    buf[m++] = state[i][n];
+  }
+  return m;
+}
+
+int FixTLSPHBonds::unpack_exchange(int nlocal, double *buf)
+{
+  int m = 0;
+  npartner[nlocal] = static_cast<int>(buf[m++]);
+  nintact0[nlocal] = static_cast<int>(buf[m++]);
+  work_hg[nlocal] = buf[m++];
+  work_visc[nlocal] = buf[m++];
+  for (int n = 0; n < npartner[nlocal]; n++) {
+    partner[nlocal][n] = (tagint) ubuf(buf[m++]).i;
+    state[nlocal][n] = static_cast<int>(buf[m++]);
+  }
+  return m;
+}
+
+void FixTLSPHBonds::write_restart(FILE *fp)
+{
+  if (comm->me != 0) return;
+  double list[3] = {(double) first, (double) maxpartner, (double) nbonds_total};
+  int n = 3;
+  int size = n * sizeof(double);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list, sizeof(double), n, fp);
+}
+
+void FixTLSPHBonds::restart(char *buf)
+{
+  double *list = (double *) buf;
+  first = static_cast<int>(list[0]);
+  maxpartner = static_cast<int>(list[1]);
+  nbonds_total = static_cast<bigint>(list[2]);
+  // per-atom rows arrive through unpack_restart(): make room for them
+  memory->destroy(partner);
+  memory->destroy(state);
+  memory->create(partner, atom->nmax, maxpartner, "tlsph/bonds:partner");
+  memory->create(state, atom->nmax, maxpartner, "tlsph/bonds:state");
+}
+
+int FixTLSPHBonds::pack_restart(int i, double *buf)
+{
+  // first value is the count of values, as LAMMPS requires
+  int m = 1;
+  m += pack_exchange(i, &buf[1]);
+  buf[0] = m;
+  return m;
+}
+
+void FixTLSPHBonds::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  m++;
+  unpack_exchange(nlocal, &extra[nlocal][m]);
+}
+
+int FixTLSPHBonds::maxsize_restart()
+{
+  return 2 * maxpartner + 5;
+}
+
+int FixTLSPHBonds::size_restart(int nlocal)
+{
+  return 2 * npartner[nlocal] + 5;
+}

@@ -1,0 +1,76 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   USER-TLSPH: internal fix that owns every particle's reference partners
+
+   Created by pair_style tlsph (style name TLSPH_BONDS, like PERI_NEIGH).
+   Per atom: the global IDs of the partners found within the kernel support
+   2h in the reference configuration at the first run, and one state word
+   per bond (intact or broken). The rows migrate with their atom and are
+   written to restart files; nothing else about a bond needs to be kept,
+   because the geometric bond data are recomputed from x0 on every
+   reneighboring (see PairTLSPH::build_bond_cache).
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(TLSPH_BONDS,FixTLSPHBonds)
+// clang-format on
+#else
+
+#ifndef LMP_FIX_TLSPH_BONDS_H
+#define LMP_FIX_TLSPH_BONDS_H
+
+#include "fix.h"
+
+namespace LAMMPS_NS {
+
+class FixTLSPHBonds : public Fix {
+ public:
+  enum { BROKEN = 0, INTACT = 1 };
+
+  FixTLSPHBonds(class LAMMPS *, int, char **);
+  ~FixTLSPHBonds() override;
+  int setmask() override;
+  void init() override;
+  void init_list(int, class NeighList *) override;
+  void setup_post_neighbor() override;
+  void post_neighbor() override;
+  void min_post_neighbor() override;
+
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void set_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+
+  // set by the pair style before the first run: reference search radius
+  void set_cutoff(double cut) { cutoff = cut; }
+  bool have_partners() const { return !first; }
+
+  int maxpartner;       // max # of partners of any atom (all ranks)
+  int *npartner;        // # of partners of each atom
+  int *nintact0;        // # of partners at setup (denominator of the damage)
+  tagint **partner;     // global IDs of partners
+  int **state;          // INTACT or BROKEN, per bond
+  double *work_hg;      // work done against hourglass forces, per atom
+  double *work_visc;    // work dissipated by artificial viscosity, per atom
+  int rebuild;          // 1 after every neighbor build: the pair re-caches bonds
+  bigint nbonds_total;  // all bonds (counted twice, once from each end) at setup
+
+ private:
+  int first;             // 1 until the partners have been found
+  double cutoff;         // reference search radius (2h)
+  class NeighList *list;
+  void find_partners();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,658 @@
+/* ----------------------------------------------------------------------
+   USER-TLSPH: pair_style tlsph, see pair_tlsph.h and doc/pair_tlsph.rst
+------------------------------------------------------------------------- */
+
+#include "pair_tlsph.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_tlsph_bonds.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "potential_file_reader.h"
+#include "tlsph_particle.h"
+#include "tokenizer.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace TLSPH;
+
+namespace {
+const char *const MATERIAL_KEYS = "E, nu, rho";
+}    // namespace
+
+PairTLSPH::PairTLSPH(LAMMPS *lmp) : Pair(lmp)
+{
+  bonds = nullptr;
+  h = 0.0;
+  alpha = 1.0;
+  beta = 0.0;
+  gamma = 1.0;
+  plane_stress = 0;
+  cutfactor = 1.1;
+  dim = 3;
+  nmax = 0;
+  Ainv = sumw = F = T = H = nullptr;
+  psi = nullptr;
+  nbond = nullptr;
+  bond_start = nullptr;
+  cache = nullptr;
+  ncache_max = nstart_max = 0;
+
+  single_enable = 0;
+  restartinfo = 1;
+  manybody_flag = 1;
+  no_virial_fdotr_compute = 1;
+  centroidstressflag = CENTROID_NOTAVAIL;
+}
+
+PairTLSPH::~PairTLSPH()
+{
+  if (modify->nfix && bonds) {
+    int ifix = modify->find_fix_by_style("^TLSPH_BONDS$");
+    if (ifix >= 0 && modify->fix[ifix] == (Fix *) bonds) modify->delete_fix(bonds->id);
+  }
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+  }
+  memory->destroy(Ainv);
+  memory->destroy(sumw);
+  memory->destroy(F);
+  memory->destroy(T);
+  memory->destroy(H);
+  memory->destroy(psi);
+  memory->destroy(nbond);
+  memory->destroy(bond_start);
+  memory->sfree(cache);
+}
+
+void PairTLSPH::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes;
+  memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) setflag[i][j] = 0;
+  memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
+  mat.assign(n + 1, Material{0, 0, 0, 0, 0, 0});
+  pairmat.assign(n + 1, TLSPH::PairMaterial{0, 0, 0});
+}
+
+/* ----------------------------------------------------------------------
+   pair_style tlsph h VALUE [alpha A] [beta B] [gamma G] [plane strain|stress]
+                             [cutfactor C]
+------------------------------------------------------------------------- */
+
+void PairTLSPH::settings(int narg, char **arg)
+{
+  dim = domain->dimension;
+  h = 0.0;
+  alpha = 1.0;
+  beta = 0.0;
+  gamma = 1.0;
+  plane_stress = 0;
+  cutfactor = 1.1;
+  bool have_h = false;
+
+  int iarg = 0;
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if (iarg + 1 >= narg)
+      error->all(FLERR, "pair_style tlsph: keyword '{}' needs a value", key);
+    const char *val = arg[iarg + 1];
+    if (key == "h") {
+      h = utils::numeric(FLERR, val, false, lmp);
+      if (h <= 0.0) error->all(FLERR, "pair_style tlsph: h must be > 0 (smoothing length), got {}", val);
+      have_h = true;
+    } else if (key == "alpha") {
+      alpha = utils::numeric(FLERR, val, false, lmp);
+      if (alpha < 0.0) error->all(FLERR, "pair_style tlsph: alpha must be >= 0, got {}", val);
+    } else if (key == "beta") {
+      beta = utils::numeric(FLERR, val, false, lmp);
+      if (beta < 0.0) error->all(FLERR, "pair_style tlsph: beta must be >= 0, got {}", val);
+    } else if (key == "gamma") {
+      gamma = utils::numeric(FLERR, val, false, lmp);
+    } else if (key == "plane") {
+      if (dim != 2)
+        error->all(FLERR, "pair_style tlsph: keyword 'plane' is only allowed with dimension 2 "
+                          "(this simulation is 3D)");
+      if (strcmp(val, "strain") == 0) plane_stress = 0;
+      else if (strcmp(val, "stress") == 0) plane_stress = 1;
+      else error->all(FLERR, "pair_style tlsph: plane must be 'strain' or 'stress', got '{}'", val);
+    } else if (key == "cutfactor") {
+      cutfactor = utils::numeric(FLERR, val, false, lmp);
+      if (cutfactor < 1.0)
+        error->all(FLERR, "pair_style tlsph: cutfactor must be >= 1, got {}", val);
+    } else {
+      error->all(FLERR,
+                 "pair_style tlsph: unknown keyword '{}' (allowed: h, alpha, beta, gamma, plane, "
+                 "cutfactor)", key);
+    }
+    iarg += 2;
+  }
+  if (!have_h) error->all(FLERR, "pair_style tlsph: keyword 'h' (smoothing length) is required");
+  kernel = CubicSpline(h, dim);
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J E value nu value rho value      (inline, I and J ranges)
+   pair_coeff * * file.tlsph name1 name2 ...      (one name per atom type)
+------------------------------------------------------------------------- */
+
+void PairTLSPH::set_material(int type, const std::vector<std::string> &words,
+                             const std::string &where)
+{
+  double E = -1.0, nu = -2.0, rho = -1.0;
+  bool hE = false, hnu = false, hrho = false;
+  if (words.size() % 2)
+    error->all(FLERR, "{}: material values come as keyword/value pairs ({}), got an odd count",
+               where, MATERIAL_KEYS);
+  for (size_t m = 0; m < words.size(); m += 2) {
+    const std::string &key = words[m];
+    const double v = utils::numeric(FLERR, words[m + 1].c_str(), false, lmp);
+    if (key == "E") E = v, hE = true;
+    else if (key == "nu") nu = v, hnu = true;
+    else if (key == "rho") rho = v, hrho = true;
+    else error->all(FLERR, "{}: unknown material keyword '{}' (allowed: {})", where, key, MATERIAL_KEYS);
+  }
+  if (!hE) error->all(FLERR, "{}: missing material value 'E' (Young's modulus)", where);
+  if (!hnu) error->all(FLERR, "{}: missing material value 'nu' (Poisson's ratio)", where);
+  if (!hrho) error->all(FLERR, "{}: missing material value 'rho' (reference density)", where);
+  if (E <= 0.0) error->all(FLERR, "{}: E must be > 0, got {}", where, E);
+  if (nu <= -1.0 || nu >= 0.5)
+    error->all(FLERR, "{}: nu must satisfy -1 < nu < 0.5, got {}", where, nu);
+  if (rho <= 0.0) error->all(FLERR, "{}: rho must be > 0, got {}", where, rho);
+
+  Material &m = mat[type];
+  m.E = E;
+  m.nu = nu;
+  m.rho = rho;
+  m.lambda = lame_lambda(E, nu);
+  m.mu = lame_mu(E, nu);
+  m.c0 = wave_speed(m.lambda, m.mu, rho);
+  pairmat[type] = PairMaterial{m.c0, m.rho, m.E};
+}
+
+void PairTLSPH::coeff(int narg, char **arg)
+{
+  if (narg < 3)
+    error->all(FLERR, "pair_coeff tlsph: expected 'I J E value nu value rho value' or "
+                      "'* * file name1 name2 ...'");
+  if (!allocated) allocate();
+  const int ntypes = atom->ntypes;
+
+  const std::string first = arg[2];
+  const bool inline_form = (first == "E" || first == "nu" || first == "rho");
+  if (!inline_form) {
+    if (strcmp(arg[0], "*") != 0 || strcmp(arg[1], "*") != 0)
+      error->all(FLERR, "pair_coeff tlsph: the file form must be 'pair_coeff * * {} name1 ... "
+                        "name{}' (or give inline values: {})", first, ntypes, MATERIAL_KEYS);
+    if (narg != 3 + ntypes)
+      error->all(FLERR, "pair_coeff tlsph: file '{}' needs one material name per atom type ({}), "
+                        "got {}", first, ntypes, narg - 3);
+    read_material_file(first, ntypes, &arg[3]);
+  } else {
+    int ilo, ihi, jlo, jhi;
+    utils::bounds(FLERR, arg[0], 1, ntypes, ilo, ihi, error);
+    utils::bounds(FLERR, arg[1], 1, ntypes, jlo, jhi, error);
+    const int lo = MAX(ilo, jlo), hi = MIN(ihi, jhi);
+    if (lo > hi)
+      error->all(FLERR, "pair_coeff tlsph: a material belongs to one atom type (pair_coeff I I "
+                        "...); partners of different types interact automatically");
+    std::vector<std::string> words(arg + 2, arg + narg);
+    for (int i = lo; i <= hi; i++) {
+      set_material(i, words, fmt::format("pair_coeff {} {}", i, i));
+      setflag[i][i] = 1;
+    }
+  }
+  for (int i = 1; i <= ntypes; i++)
+    for (int j = i + 1; j <= ntypes; j++) setflag[i][j] = (setflag[i][i] && setflag[j][j]);
+}
+
+void PairTLSPH::read_material_file(const std::string &file, int ntypes, char **names)
+{
+  // every rank reads the (small) file; lines: name key value key value ...
+  std::vector<std::vector<std::string>> found(ntypes + 1);
+  std::vector<bool> have(ntypes + 1, false);
+  {
+    PotentialFileReader reader(lmp, file, "tlsph material");
+    char *line;
+    while ((line = reader.next_line())) {
+      std::vector<std::string> words = Tokenizer(line, " \t\n\r\f").as_vector();
+      if (words.empty()) continue;
+      for (int t = 1; t <= ntypes; t++) {
+        if (words[0] != names[t - 1]) continue;
+        found[t].assign(words.begin() + 1, words.end());
+        have[t] = true;
+      }
+    }
+  }
+  for (int t = 1; t <= ntypes; t++) {
+    if (strcmp(names[t - 1], "NULL") == 0) continue;
+    if (!have[t])
+      error->all(FLERR, "pair_coeff tlsph: material '{}' (atom type {}) not found in file '{}'",
+                 names[t - 1], t, file);
+    set_material(t, found[t], fmt::format("material '{}' in {}", names[t - 1], file));
+    setflag[t][t] = 1;
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairTLSPH::init_style()
+{
+  if (!atom->peri_flag || !atom->rmass_flag || !atom->vfrac_flag)
+    error->all(FLERR, "pair tlsph requires atom_style peri (per-particle mass, volume and "
+                      "reference position x0)");
+  if (domain->dimension != dim)
+    error->all(FLERR, "pair tlsph was set up for dimension {} but the simulation is {}D: "
+                      "re-issue pair_style after the dimension command", dim, domain->dimension);
+  if (dim == 2 && domain->zperiodic == 0)
+    error->all(FLERR, "pair tlsph in 2D needs a periodic z dimension (LAMMPS 2D convention)");
+
+  // partners are found through global IDs: make sure an atom map exists
+  if (atom->tag_enable == 0) error->all(FLERR, "pair tlsph requires atom IDs");
+  if (atom->map_style == Atom::MAP_NONE) {
+    atom->map_init();
+    atom->map_set();
+  }
+
+  // the internal fix that owns the bonds
+  int ifix = modify->find_fix_by_style("^TLSPH_BONDS$");
+  if (ifix < 0) {
+    modify->add_fix("TLSPH_BONDS all TLSPH_BONDS");
+    ifix = modify->find_fix_by_style("^TLSPH_BONDS$");
+  }
+  bonds = dynamic_cast<FixTLSPHBonds *>(modify->fix[ifix]);
+  bonds->set_cutoff(2.0 * h);
+  bonds->rebuild = 1;
+
+  // forward communication: T always, F for hourglass, H for viscosity
+  comm_forward = 9 * (1 + (gamma != 0.0) + (alpha > 0.0 || beta > 0.0));
+
+  // sanity checks of the per-particle data against the materials
+  const int nlocal = atom->nlocal;
+  int bad_volume = 0;
+  double worst = 0.0;
+  for (int i = 0; i < nlocal; i++) {
+    if (atom->vfrac[i] <= 0.0) bad_volume = 1;
+    else {
+      const double rho = atom->rmass[i] / atom->vfrac[i];
+      const double rel = fabs(rho - mat[atom->type[i]].rho) / mat[atom->type[i]].rho;
+      worst = MAX(worst, rel);
+    }
+  }
+  int any_bad;
+  MPI_Allreduce(&bad_volume, &any_bad, 1, MPI_INT, MPI_MAX, world);
+  if (any_bad)
+    error->all(FLERR, "pair tlsph: every particle needs a volume > 0 (set ... volume, or the "
+                      "volume column of read_data)");
+  double worst_all;
+  MPI_Allreduce(&worst, &worst_all, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (worst_all > 1.0e-6 && comm->me == 0)
+    error->warning(FLERR, "pair tlsph: mass/volume of some particles differs from the rho of "
+                          "their material by up to {:.3g}%: the wave speed and viscosity use rho, "
+                          "the inertia uses the mass", 100.0 * worst_all);
+}
+
+double PairTLSPH::init_one(int i, int j)
+{
+  if (!setflag[i][i])
+    error->all(FLERR, "pair tlsph: atom type {} has no material: use pair_coeff {} {} E ... nu ... "
+                      "rho ...", i, i, i);
+  if (!setflag[j][j])
+    error->all(FLERR, "pair tlsph: atom type {} has no material: use pair_coeff {} {} E ... nu ... "
+                      "rho ...", j, j, j);
+  return 2.0 * h * cutfactor;
+}
+
+double PairTLSPH::max_wave_speed() const
+{
+  double c = 0.0;
+  for (int t = 1; t <= atom->ntypes; t++)
+    if (setflag && setflag[t][t]) c = MAX(c, mat[t].c0);
+  return c;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairTLSPH::grow_peratom()
+{
+  nmax = atom->nmax;
+  memory->destroy(Ainv);
+  memory->destroy(sumw);
+  memory->destroy(F);
+  memory->destroy(T);
+  memory->destroy(H);
+  memory->destroy(psi);
+  memory->destroy(nbond);
+  memory->create(Ainv, nmax, 9, "tlsph:Ainv");
+  memory->create(sumw, nmax, 3, "tlsph:sumw");
+  memory->create(F, nmax, 9, "tlsph:F");
+  memory->create(T, nmax, 9, "tlsph:T");
+  memory->create(H, nmax, 9, "tlsph:H");
+  memory->create(psi, nmax, "tlsph:psi");
+  memory->create(nbond, nmax, "tlsph:nbond");
+}
+
+void PairTLSPH::build_bond_cache()
+{
+  const int nlocal = atom->nlocal;
+  double **x0 = atom->x0;
+  double *vfrac = atom->vfrac;
+  tagint *tag = atom->tag;
+
+  int total = 0;
+  for (int i = 0; i < nlocal; i++) total += bonds->npartner[i];
+  if (total > ncache_max) {
+    ncache_max = total + total / 8 + 16;
+    memory->sfree(cache);
+    cache = (BondCache *) memory->smalloc((bigint) ncache_max * sizeof(BondCache), "tlsph:cache");
+  }
+  if (nlocal + 1 > nstart_max) {
+    nstart_max = atom->nmax + 1;
+    memory->destroy(bond_start);
+    memory->create(bond_start, nstart_max, "tlsph:bond_start");
+  }
+
+  int nb = 0;
+  for (int i = 0; i < nlocal; i++) {
+    bond_start[i] = nb;
+    const int np = bonds->npartner[i];
+    tagint *partner = bonds->partner[i];
+    int *state = bonds->state[i];
+    for (int k = 0; k < np; k++) {
+      if (state[k] != FixTLSPHBonds::INTACT) continue;
+      int j = atom->map(partner[k]);
+      if (j < 0)
+        error->one(FLERR, "pair tlsph: partner {} of particle {} is farther away than the ghost "
+                          "cutoff at step {}: raise comm_modify cutoff or pair_style cutfactor",
+                   partner[k], tag[i], update->ntimestep);
+      j = domain->closest_image(i, j);
+      double X[3] = {x0[j][0] - x0[i][0], x0[j][1] - x0[i][1], x0[j][2] - x0[i][2]};
+      domain->minimum_image(X[0], X[1], X[2]);
+      if (dim == 2) X[2] = 0.0;
+      make_bond(kernel, X, vfrac[j], j, k, cache[nb]);
+      nb++;
+    }
+    nbond[i] = nb - bond_start[i];
+    correction(&cache[bond_start[i]], nbond[i], dim, Ainv[i], sumw[i]);
+  }
+  bond_start[nlocal] = nb;
+}
+
+namespace {
+// row accessor over a LAMMPS per-atom array
+struct Rows {
+  double **p;
+  const double *operator()(int j) const { return p[j]; }
+};
+struct TypeOf {
+  const int *t;
+  int operator()(int j) const { return t[j]; }
+};
+struct VirialTally {
+  double *virial;
+  void operator()(int, const double *xij, const double *f) const
+  {
+    // every bond is visited from both ends: half of r_ij (x) f_ij each time
+    virial[0] -= 0.5 * xij[0] * f[0];
+    virial[1] -= 0.5 * xij[1] * f[1];
+    virial[2] -= 0.5 * xij[2] * f[2];
+    virial[3] -= 0.5 * xij[0] * f[1];
+    virial[4] -= 0.5 * xij[0] * f[2];
+    virial[5] -= 0.5 * xij[1] * f[2];
+  }
+};
+}    // namespace
+
+/* ----------------------------------------------------------------------
+   pass (1): F, stress, and the tensors the force pass needs
+------------------------------------------------------------------------- */
+
+template <int DIM> void PairTLSPH::compute_deformation()
+{
+  const Rows x{atom->x};
+  int *type = atom->type;
+  tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  const bool need_H = (alpha > 0.0 || beta > 0.0);
+
+  for (int i = 0; i < nlocal; i++) {
+    double *Fi = F[i];
+    TLSPH::deformation_gradient<DIM>(x, i, &cache[bond_start[i]], nbond[i], Ainv[i], Fi);
+    const Material &m = mat[type[i]];
+    const IsotropicSVK law{m.lambda, m.mu, DIM == 2 ? plane_stress : 0};
+    double J;
+    psi[i] = stress_tensors(law, DIM, Fi, Ainv[i], T[i], need_H ? H[i] : nullptr, &J);
+    if (!(J > 0.0) || !std::isfinite(psi[i]))
+      error->one(FLERR, "pair tlsph: particle {} (type {}) has det(F) = {} at step {}: the "
+                        "simulation is unstable (reduce the time step, e.g. fix tlsph/dt, or "
+                        "raise alpha/gamma)", tag[i], type[i], J, update->ntimestep);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   pass (3): stress, viscous and hourglass forces (tlsph_particle.h)
+------------------------------------------------------------------------- */
+
+template <int DIM, int HG, int VISC, int VIRIAL> void PairTLSPH::compute_forces()
+{
+  const Rows x{atom->x}, v{atom->v}, Tr{T}, Fr{F}, Hr{H};
+  const TypeOf type{atom->type};
+  double **vel = atom->v;
+  double **f = atom->f;
+  double *vfrac = atom->vfrac;
+  const int nlocal = atom->nlocal;
+  // energy tallies advance with time, not during setup
+  const double dt = update->setupflag ? 0.0 : update->dt;
+  double *work_hg = bonds->work_hg;
+  double *work_visc = bonds->work_visc;
+  const VirialTally tally{virial};
+  const PairMaterial *pm = pairmat.data();
+
+  for (int i = 0; i < nlocal; i++) {
+    double fs[3] = {0, 0, 0}, fv[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
+    particle_force<DIM, HG, VISC, VIRIAL>(i, vfrac[i], &cache[bond_start[i]], nbond[i], sumw[i],
+                                          x, v, Tr, Fr, Hr, type, pm, h, alpha, beta, gamma, fs,
+                                          fv, fh, tally);
+    for (int d = 0; d < DIM; d++) f[i][d] += fs[d] + fv[d] + fh[d];
+    if (HG) work_hg[i] -= dt * (fh[0] * vel[i][0] + fh[1] * vel[i][1] + fh[2] * vel[i][2]);
+    if (VISC) work_visc[i] -= dt * (fv[0] * vel[i][0] + fv[1] * vel[i][1] + fv[2] * vel[i][2]);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairTLSPH::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  if (atom->nmax > nmax) grow_peratom();
+  if (bonds->rebuild) {
+    build_bond_cache();
+    bonds->rebuild = 0;
+  }
+
+  if (dim == 2) compute_deformation<2>();
+  else compute_deformation<3>();
+
+  comm->forward_comm_pair(this);
+
+  const int hg = (gamma != 0.0);
+  const int visc = (alpha > 0.0 || beta > 0.0);
+  const int vir = vflag_global ? 1 : 0;
+  const int key = hg + 2 * visc + 4 * vir + 8 * (dim == 3);
+  switch (key) {
+    // clang-format off
+    case 0:  compute_forces<2, 0, 0, 0>(); break;
+    case 1:  compute_forces<2, 1, 0, 0>(); break;
+    case 2:  compute_forces<2, 0, 1, 0>(); break;
+    case 3:  compute_forces<2, 1, 1, 0>(); break;
+    case 4:  compute_forces<2, 0, 0, 1>(); break;
+    case 5:  compute_forces<2, 1, 0, 1>(); break;
+    case 6:  compute_forces<2, 0, 1, 1>(); break;
+    case 7:  compute_forces<2, 1, 1, 1>(); break;
+    case 8:  compute_forces<3, 0, 0, 0>(); break;
+    case 9:  compute_forces<3, 1, 0, 0>(); break;
+    case 10: compute_forces<3, 0, 1, 0>(); break;
+    case 11: compute_forces<3, 1, 1, 0>(); break;
+    case 12: compute_forces<3, 0, 0, 1>(); break;
+    case 13: compute_forces<3, 1, 0, 1>(); break;
+    case 14: compute_forces<3, 0, 1, 1>(); break;
+    case 15: compute_forces<3, 1, 1, 1>(); break;
+      // clang-format on
+  }
+
+  if (eflag_either) {
+    const int nlocal = atom->nlocal;
+    double *vfrac = atom->vfrac;
+    for (int i = 0; i < nlocal; i++) {
+      const double e = vfrac[i] * psi[i];
+      if (eflag_global) eng_vdwl += e;
+      if (eflag_atom) eatom[i] += e;
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+int PairTLSPH::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
+{
+  const bool hg = (gamma != 0.0), visc = (alpha > 0.0 || beta > 0.0);
+  int m = 0;
+  for (int ii = 0; ii < n; ii++) {
+    const int j = list[ii];
+    for (int k = 0; k < 9; k++) buf[m++] = T[j][k];
+    if (hg)
+      for (int k = 0; k < 9; k++) buf[m++] = F[j][k];
+    if (visc)
+      for (int k = 0; k < 9; k++) buf[m++] = H[j][k];
+  }
+  return m;
+}
+
+void PairTLSPH::unpack_forward_comm(int n, int first, double *buf)
+{
+  const bool hg = (gamma != 0.0), visc = (alpha > 0.0 || beta > 0.0);
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    for (int k = 0; k < 9; k++) T[i][k] = buf[m++];
+    if (hg)
+      for (int k = 0; k < 9; k++) F[i][k] = buf[m++];
+    if (visc)
+      for (int k = 0; k < 9; k++) H[i][k] = buf[m++];
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairTLSPH::cauchy_stress(int i, double *sigma) const
+{
+  const Material &m = mat[atom->type[i]];
+  IsotropicSVK law{m.lambda, m.mu, dim == 2 ? plane_stress : 0};
+  double Fi[9], E[9], S[9], P[9];
+  mat_copy(F[i], Fi);
+  if (dim == 2) Fi[8] = 1.0;
+  green_lagrange(Fi, E);
+  law.stress(E, S);
+  if (dim == 2 && plane_stress) Fi[8] = sqrt(1.0 + 2.0 * E[8]);
+  mat_mul(Fi, S, P);
+  double J = mat_det(Fi);
+  mat_mult(P, Fi, sigma);    // P F^T
+  for (int k = 0; k < 9; k++) sigma[k] /= J;
+}
+
+void PairTLSPH::green_lagrange_strain(int i, double *E) const
+{
+  const Material &m = mat[atom->type[i]];
+  double Fi[9], S[9];
+  mat_copy(F[i], Fi);
+  if (dim == 2) Fi[8] = 1.0;
+  green_lagrange(Fi, E);
+  IsotropicSVK law{m.lambda, m.mu, dim == 2 ? plane_stress : 0};
+  law.stress(E, S);    // sets the plane-stress E33
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairTLSPH::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  for (int i = 1; i <= atom->ntypes; i++) {
+    fwrite(&setflag[i][i], sizeof(int), 1, fp);
+    if (setflag[i][i]) {
+      double v[3] = {mat[i].E, mat[i].nu, mat[i].rho};
+      fwrite(v, sizeof(double), 3, fp);
+    }
+  }
+}
+
+void PairTLSPH::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  const int me = comm->me;
+  for (int i = 1; i <= atom->ntypes; i++) {
+    if (me == 0) utils::sfread(FLERR, &setflag[i][i], sizeof(int), 1, fp, nullptr, error);
+    MPI_Bcast(&setflag[i][i], 1, MPI_INT, 0, world);
+    if (setflag[i][i]) {
+      double v[3];
+      if (me == 0) utils::sfread(FLERR, v, sizeof(double), 3, fp, nullptr, error);
+      MPI_Bcast(v, 3, MPI_DOUBLE, 0, world);
+      std::vector<std::string> words = {"E", fmt::format("{:.17g}", v[0]), "nu",
+                                        fmt::format("{:.17g}", v[1]), "rho",
+                                        fmt::format("{:.17g}", v[2])};
+      set_material(i, words, "restart file");
+    }
+  }
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i + 1; j <= atom->ntypes; j++) setflag[i][j] = (setflag[i][i] && setflag[j][j]);
+}
+
+void PairTLSPH::write_restart_settings(FILE *fp)
+{
+  double v[6] = {h, alpha, beta, gamma, (double) plane_stress, cutfactor};
+  fwrite(v, sizeof(double), 6, fp);
+  fwrite(&dim, sizeof(int), 1, fp);
+}
+
+void PairTLSPH::read_restart_settings(FILE *fp)
+{
+  double v[6];
+  if (comm->me == 0) {
+    utils::sfread(FLERR, v, sizeof(double), 6, fp, nullptr, error);
+    utils::sfread(FLERR, &dim, sizeof(int), 1, fp, nullptr, error);
+  }
+  MPI_Bcast(v, 6, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&dim, 1, MPI_INT, 0, world);
+  h = v[0];
+  alpha = v[1];
+  beta = v[2];
+  gamma = v[3];
+  plane_stress = static_cast<int>(v[4]);
+  cutfactor = v[5];
+  kernel = CubicSpline(h, dim);
+}
+
+double PairTLSPH::memory_usage()
+{
+  double bytes = (double) nmax * (49 * sizeof(double) + sizeof(int));
+  bytes += (double) ncache_max * sizeof(BondCache) + nstart_max * sizeof(int);
+  return bytes;
+}
+
+void *PairTLSPH::extract(const char *name, int &dimflag)
+{
+  dimflag = 0;
+  if (strcmp(name, "h") == 0) return (void *) &h;
+  if (strcmp(name, "gamma") == 0) return (void *) &gamma;
+  if (strcmp(name, "alpha") == 0) return (void *) &alpha;
+  return nullptr;
+}

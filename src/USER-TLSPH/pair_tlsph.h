@@ -1,0 +1,112 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   USER-TLSPH: pair_style tlsph, Total Lagrangian SPH for elastic solids
+   (doc/pair_tlsph.rst)
+
+   One step, as in the doc page:
+     (1) F_i, stress and the pair tensors of every local particle, from its
+         intact reference bonds            -> compute_deformation()
+     (2) forward communication to ghosts    -> pack/unpack_forward_comm()
+     (3) stress, viscous and hourglass pair forces -> compute_forces()
+   The physics lives in tlsph_*.h; this class parses, loops and calls it.
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(tlsph,PairTLSPH)
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_TLSPH_H
+#define LMP_PAIR_TLSPH_H
+
+#include "pair.h"
+#include "tlsph_kernel.h"
+#include "tlsph_material.h"
+#include "tlsph_particle.h"
+
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class PairTLSPH : public Pair {
+ public:
+  struct Material {
+    double E, nu, rho;    // as given
+    double lambda, mu;    // Lame constants
+    double c0;            // longitudinal wave speed sqrt((lambda + 2 mu)/rho)
+  };
+
+  using BondCache = TLSPH::Bond;
+
+  PairTLSPH(class LAMMPS *);
+  ~PairTLSPH() override;
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  double memory_usage() override;
+  void *extract(const char *, int &) override;
+
+  // read by the computes and fixes of the package (valid after a force call)
+  const Material &material(int type) const { return mat[type]; }
+  double smoothing_length() const { return h; }
+  double max_wave_speed() const;
+  void cauchy_stress(int i, double *sigma) const;
+  void green_lagrange_strain(int i, double *E) const;
+  const double *deformation_gradient(int i) const { return F[i]; }
+  double strain_energy_density(int i) const { return psi[i]; }
+  int dimension() const { return dim; }
+
+  class FixTLSPHBonds *bonds;
+
+ protected:
+  // settings
+  double h;               // smoothing length
+  double alpha, beta;     // artificial viscosity coefficients
+  double gamma;           // hourglass coefficient
+  int plane_stress;       // 2D: 1 plane stress, 0 plane strain
+  double cutfactor;       // ghost cutoff = cutfactor * 2h
+  int dim;
+  TLSPH::CubicSpline kernel;
+
+  // materials, per atom type
+  std::vector<Material> mat;
+  std::vector<TLSPH::PairMaterial> pairmat;    // what the force pass reads
+  void set_material(int type, const std::vector<std::string> &words, const std::string &where);
+  void read_material_file(const std::string &file, int narg, char **names);
+
+  // per-atom arrays (nmax)
+  int nmax;
+  double **Ainv;      // inverse correction matrix A_i^-1
+  double **sumw;      // sum_j w_ij over the cached bonds
+  double **F;         // deformation gradient
+  double **T;         // P_i A_i^-1 (communicated)
+  double **H;         // J_i F_i^-T A_i^-1 (communicated when viscosity is on)
+  double *psi;        // strain energy density
+  int *nbond;         // # of cached (intact) bonds
+  void grow_peratom();
+
+  // bond cache, CSR layout over local atoms
+  int *bond_start;
+  BondCache *cache;
+  int ncache_max, nstart_max;
+  void build_bond_cache();
+
+  template <int DIM> void compute_deformation();
+  template <int DIM, int HG, int VISC, int VIRIAL> void compute_forces();
+
+  void allocate();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,132 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   USER-TLSPH: Total Lagrangian SPH for solid mechanics (LAMMPS plugin)
+
+   Small fixed-size tensor algebra used by the physics headers.
+   Tensors are row-major double[9] (T[3*r+c]), vectors double[3].
+   Nothing here includes LAMMPS, allocates, or does I/O, so every function
+   can be called from a unit test or (with Kokkos) from device code.
+------------------------------------------------------------------------- */
+
+#ifndef TLSPH_MATH_H
+#define TLSPH_MATH_H
+
+#include <cmath>
+
+#if defined(TLSPH_KOKKOS) && defined(KOKKOS_INLINE_FUNCTION)
+#define TLSPH_INLINE KOKKOS_INLINE_FUNCTION
+#else
+#define TLSPH_INLINE inline
+#endif
+
+namespace TLSPH {
+
+TLSPH_INLINE void mat_identity(double *A)
+{
+  A[0] = 1.0; A[1] = 0.0; A[2] = 0.0;
+  A[3] = 0.0; A[4] = 1.0; A[5] = 0.0;
+  A[6] = 0.0; A[7] = 0.0; A[8] = 1.0;
+}
+
+TLSPH_INLINE void mat_zero(double *A)
+{
+  for (int k = 0; k < 9; ++k) A[k] = 0.0;
+}
+
+TLSPH_INLINE void mat_copy(const double *A, double *B)
+{
+  for (int k = 0; k < 9; ++k) B[k] = A[k];
+}
+
+// C = A B
+TLSPH_INLINE void mat_mul(const double *A, const double *B, double *C)
+{
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      C[3 * r + c] = A[3 * r] * B[c] + A[3 * r + 1] * B[3 + c] + A[3 * r + 2] * B[6 + c];
+}
+
+// C = A^T B
+TLSPH_INLINE void mat_tmul(const double *A, const double *B, double *C)
+{
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      C[3 * r + c] = A[r] * B[c] + A[3 + r] * B[3 + c] + A[6 + r] * B[6 + c];
+}
+
+// C = A B^T
+TLSPH_INLINE void mat_mult(const double *A, const double *B, double *C)
+{
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      C[3 * r + c] = A[3 * r] * B[3 * c] + A[3 * r + 1] * B[3 * c + 1] + A[3 * r + 2] * B[3 * c + 2];
+}
+
+TLSPH_INLINE void mat_transpose(const double *A, double *B)
+{
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) B[3 * c + r] = A[3 * r + c];
+}
+
+// y = A x
+TLSPH_INLINE void mat_vec(const double *A, const double *x, double *y)
+{
+  y[0] = A[0] * x[0] + A[1] * x[1] + A[2] * x[2];
+  y[1] = A[3] * x[0] + A[4] * x[1] + A[5] * x[2];
+  y[2] = A[6] * x[0] + A[7] * x[1] + A[8] * x[2];
+}
+
+TLSPH_INLINE double mat_det(const double *A)
+{
+  return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) +
+      A[2] * (A[3] * A[7] - A[4] * A[6]);
+}
+
+TLSPH_INLINE double mat_trace(const double *A)
+{
+  return A[0] + A[4] + A[8];
+}
+
+// Frobenius norm
+TLSPH_INLINE double mat_norm(const double *A)
+{
+  double s = 0.0;
+  for (int k = 0; k < 9; ++k) s += A[k] * A[k];
+  return std::sqrt(s);
+}
+
+// B = A^{-1}; returns det(A). B is left untouched when det(A) == 0.
+TLSPH_INLINE double mat_inverse(const double *A, double *B)
+{
+  const double c00 = A[4] * A[8] - A[5] * A[7];
+  const double c01 = A[5] * A[6] - A[3] * A[8];
+  const double c02 = A[3] * A[7] - A[4] * A[6];
+  const double det = A[0] * c00 + A[1] * c01 + A[2] * c02;
+  if (det == 0.0) return det;
+  const double s = 1.0 / det;
+  B[0] = c00 * s;
+  B[1] = (A[2] * A[7] - A[1] * A[8]) * s;
+  B[2] = (A[1] * A[5] - A[2] * A[4]) * s;
+  B[3] = c01 * s;
+  B[4] = (A[0] * A[8] - A[2] * A[6]) * s;
+  B[5] = (A[2] * A[3] - A[0] * A[5]) * s;
+  B[6] = c02 * s;
+  B[7] = (A[1] * A[6] - A[0] * A[7]) * s;
+  B[8] = (A[0] * A[4] - A[1] * A[3]) * s;
+  return det;
+}
+
+TLSPH_INLINE double dot3(const double *a, const double *b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// A += a (x) b, i.e. A_kl += a_k b_l
+TLSPH_INLINE void add_outer(double *A, const double *a, const double *b)
+{
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) A[3 * r + c] += a[r] * b[c];
+}
+
+}    // namespace TLSPH
+
+#endif
