@@ -43,8 +43,10 @@ void ComputeTLSPHEnergy::compute_vector()
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
       mine[0] += vfrac[i] * pair->strain_energy_density(i);
-      mine[1] += bonds->work_hg[i];
-      mine[2] += bonds->work_visc[i];
+      double whg, wvisc;
+      bonds->work_now(i, whg, wvisc);
+      mine[1] += whg;
+      mine[2] += wvisc;
       mine[3] += 0.5 * rmass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
     }
   }

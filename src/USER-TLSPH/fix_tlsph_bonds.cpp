@@ -21,13 +21,16 @@ using namespace FixConst;
 
 FixTLSPHBonds::FixTLSPHBonds(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), npartner(nullptr), nintact0(nullptr), partner(nullptr), state(nullptr),
-    work_hg(nullptr), work_visc(nullptr), list(nullptr)
+    work_hg(nullptr), work_visc(nullptr), f_hg(nullptr), f_visc(nullptr),
+    list(nullptr)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix TLSPH_BONDS command: it takes no arguments");
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
   first = 1;
+  precounted = 0;
+  tallied_step = -1;
   rebuild = 1;
   cutoff = 0.0;
   nbonds_total = 0;
@@ -41,6 +44,7 @@ FixTLSPHBonds::FixTLSPHBonds(LAMMPS *lmp, int narg, char **arg) :
     npartner[i] = 0;
     nintact0[i] = 0;
     work_hg[i] = work_visc[i] = 0.0;
+    for (int d = 0; d < 3; d++) f_hg[i][d] = f_visc[i][d] = 0.0;
   }
 }
 
@@ -54,11 +58,13 @@ FixTLSPHBonds::~FixTLSPHBonds()
   memory->destroy(state);
   memory->destroy(work_hg);
   memory->destroy(work_visc);
+  memory->destroy(f_hg);
+  memory->destroy(f_visc);
 }
 
 int FixTLSPHBonds::setmask()
 {
-  return POST_NEIGHBOR | MIN_POST_NEIGHBOR;
+  return POST_NEIGHBOR | MIN_POST_NEIGHBOR | END_OF_STEP;
 }
 
 void FixTLSPHBonds::init()
@@ -92,6 +98,62 @@ void FixTLSPHBonds::post_neighbor()
 void FixTLSPHBonds::min_post_neighbor()
 {
   rebuild = 1;
+}
+
+/* ----------------------------------------------------------------------
+   work of the hourglass and viscous forces (compute tlsph/energy)
+   In velocity Verlet the force f_n of step n gives two half kicks, at the
+   end of step n and at the start of step n+1, and the kinetic energy they
+   change together is exactly dt f_n . (v_{n-1/2} + v_{n+1/2}) / 2
+   = dt f_n . v_n, with the full-step velocity v_n known only here, after
+   final_integrate. (The pair sees v_{n-1/2}: tallying with it is off by
+   dt^2/(2m) f_n . f_n^total every step, a bias that does not average out; it
+   overestimated the hourglass work 25-fold at Courant number 0.3.)
+   So the tallies run half a kick ahead: work_now() takes it off. The very
+   first setup force gives only one half kick (the start of step 1); a later
+   run's setup force replaces the last force of the previous run, whose
+   second half kick is already counted.
+------------------------------------------------------------------------- */
+
+void FixTLSPHBonds::setup(int /*vflag*/)
+{
+  if (!precounted) tally_work(0.5 * update->dt);
+  precounted = 1;
+  tallied_step = update->ntimestep;
+}
+
+void FixTLSPHBonds::end_of_step()
+{
+  tally_work(update->dt);
+  precounted = 1;
+  tallied_step = update->ntimestep;
+}
+
+void FixTLSPHBonds::work_now(int i, double &hg, double &visc) const
+{
+  // during a step the force of this step has given one half kick; the
+  // tallies hold two of it once end_of_step() has run, none before. A setup
+  // force has given none: the tallies hold one of it (the first run, after
+  // setup()) or of the previous run's last force (later runs)
+  double **v = atom->v;
+  double s;
+  if (update->setupflag) s = precounted ? 0.5 : 0.0;
+  else s = (tallied_step == update->ntimestep) ? 0.5 : -0.5;
+  s *= update->dt;
+  hg = work_hg[i] + s * (f_hg[i][0] * v[i][0] + f_hg[i][1] * v[i][1] + f_hg[i][2] * v[i][2]);
+  visc = work_visc[i] +
+      s * (f_visc[i][0] * v[i][0] + f_visc[i][1] * v[i][1] + f_visc[i][2] * v[i][2]);
+}
+
+void FixTLSPHBonds::tally_work(double dt)
+{
+  double **v = atom->v;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++) {
+    work_hg[i] -= dt * (f_hg[i][0] * v[i][0] + f_hg[i][1] * v[i][1] + f_hg[i][2] * v[i][2]);
+    work_visc[i] -=
+        dt * (f_visc[i][0] * v[i][0] + f_visc[i][1] * v[i][1] + f_visc[i][2] * v[i][2]);
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -165,7 +227,8 @@ void FixTLSPHBonds::find_partners()
 double FixTLSPHBonds::memory_usage()
 {
   const double n = atom->nmax;
-  return 2.0 * n * (sizeof(int) + sizeof(double)) + n * maxpartner * (sizeof(tagint) + sizeof(int));
+  return 2.0 * n * (sizeof(int) + 4.0 * sizeof(double)) +
+      n * maxpartner * (sizeof(tagint) + sizeof(int));
 }
 
 void FixTLSPHBonds::grow_arrays(int nmax)
@@ -176,6 +239,8 @@ void FixTLSPHBonds::grow_arrays(int nmax)
   memory->grow(state, nmax, maxpartner, "tlsph/bonds:state");
   memory->grow(work_hg, nmax, "tlsph/bonds:work_hg");
   memory->grow(work_visc, nmax, "tlsph/bonds:work_visc");
+  memory->grow(f_hg, nmax, 3, "tlsph/bonds:f_hg");
+  memory->grow(f_visc, nmax, 3, "tlsph/bonds:f_visc");
 }
 
 void FixTLSPHBonds::set_arrays(int i)
@@ -184,6 +249,7 @@ void FixTLSPHBonds::set_arrays(int i)
   npartner[i] = 0;
   nintact0[i] = 0;
   work_hg[i] = work_visc[i] = 0.0;
+  for (int d = 0; d < 3; d++) f_hg[i][d] = f_visc[i][d] = 0.0;
 }
 
 void FixTLSPHBonds::copy_arrays(int i, int j, int /*delflag*/)
@@ -192,6 +258,10 @@ void FixTLSPHBonds::copy_arrays(int i, int j, int /*delflag*/)
   nintact0[j] = nintact0[i];
   work_hg[j] = work_hg[i];
   work_visc[j] = work_visc[i];
+  for (int d = 0; d < 3; d++) {
+    f_hg[j][d] = f_hg[i][d];
+    f_visc[j][d] = f_visc[i][d];
+  }
   for (int m = 0; m < npartner[j]; m++) {
     partner[j][m] = partner[i][m];
     state[j][m] = state[i][m];
@@ -229,8 +299,9 @@ int FixTLSPHBonds::unpack_exchange(int nlocal, double *buf)
 void FixTLSPHBonds::write_restart(FILE *fp)
 {
   if (comm->me != 0) return;
-  double list[3] = {(double) first, (double) maxpartner, (double) nbonds_total};
-  int n = 3;
+  double list[4] = {(double) first, (double) maxpartner, (double) nbonds_total,
+                     (double) precounted};
+  int n = 4;
   int size = n * sizeof(double);
   fwrite(&size, sizeof(int), 1, fp);
   fwrite(list, sizeof(double), n, fp);
@@ -242,6 +313,7 @@ void FixTLSPHBonds::restart(char *buf)
   first = static_cast<int>(list[0]);
   maxpartner = static_cast<int>(list[1]);
   nbonds_total = static_cast<bigint>(list[2]);
+  precounted = static_cast<int>(list[3]);
   // per-atom rows arrive through unpack_restart(): make room for them
   memory->destroy(partner);
   memory->destroy(state);

@@ -35,6 +35,8 @@ class FixTLSPHBonds : public Fix {
   void setup_post_neighbor() override;
   void post_neighbor() override;
   void min_post_neighbor() override;
+  void setup(int) override;
+  void end_of_step() override;
 
   double memory_usage() override;
   void grow_arrays(int) override;
@@ -52,6 +54,9 @@ class FixTLSPHBonds : public Fix {
   // set by the pair style before the first run: reference search radius
   void set_cutoff(double cut) { cutoff = cut; }
   bool have_partners() const { return !first; }
+  // work done against the hourglass and viscous forces of atom i up to now
+  // (compute tlsph/energy): work_hg/work_visc minus the half kick to come
+  void work_now(int i, double &hg, double &visc) const;
 
   int maxpartner;       // max # of partners of any atom (all ranks)
   int *npartner;        // # of partners of each atom
@@ -60,14 +65,19 @@ class FixTLSPHBonds : public Fix {
   int **state;          // INTACT or BROKEN, per bond
   double *work_hg;      // work done against hourglass forces, per atom
   double *work_visc;    // work dissipated by artificial viscosity, per atom
+  double **f_hg;        // hourglass and viscous force of this step, per atom: written
+  double **f_visc;      //   by pair tlsph, turned into work in end_of_step()
   int rebuild;          // 1 after every neighbor build: the pair re-caches bonds
   bigint nbonds_total;  // all bonds (counted twice, once from each end) at setup
 
  private:
   int first;             // 1 until the partners have been found
+  int precounted;        // 1 once the work tallies include the next half kick
+  bigint tallied_step;   // step of the last tally (end_of_step or setup)
   double cutoff;         // reference search radius (2h)
   class NeighList *list;
   void find_partners();
+  void tally_work(double);
 };
 
 }    // namespace LAMMPS_NS

@@ -36,9 +36,11 @@ PairTLSPH::PairTLSPH(LAMMPS *lmp) : Pair(lmp)
   gamma = 1.0;
   plane_stress = 0;
   cutfactor = 1.1;
+  order = 2;
+  ndegraded = 0;
   dim = 3;
   nmax = 0;
-  Ainv = sumw = F = T = H = nullptr;
+  Q = sumg = F = P = fown = pk = nullptr;
   psi = nullptr;
   nbond = nullptr;
   bond_start = nullptr;
@@ -62,11 +64,12 @@ PairTLSPH::~PairTLSPH()
     memory->destroy(setflag);
     memory->destroy(cutsq);
   }
-  memory->destroy(Ainv);
-  memory->destroy(sumw);
+  memory->destroy(Q);
+  memory->destroy(sumg);
   memory->destroy(F);
-  memory->destroy(T);
-  memory->destroy(H);
+  memory->destroy(P);
+  memory->destroy(fown);
+  memory->destroy(pk);
   memory->destroy(psi);
   memory->destroy(nbond);
   memory->destroy(bond_start);
@@ -78,8 +81,11 @@ void PairTLSPH::allocate()
   allocated = 1;
   const int n = atom->ntypes;
   memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  // setflag = 1 for every type: Pair::init() checks setflag before init_style()
+  // and would only say "All pair coeffs are not set"; init_one() names the type
+  // that has no material instead (a type has one when its rho > 0)
   for (int i = 1; i <= n; i++)
-    for (int j = i; j <= n; j++) setflag[i][j] = 0;
+    for (int j = i; j <= n; j++) setflag[i][j] = 1;
   memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
   mat.assign(n + 1, Material{0, 0, 0, 0, 0, 0});
   pairmat.assign(n + 1, TLSPH::PairMaterial{0, 0, 0});
@@ -99,6 +105,7 @@ void PairTLSPH::settings(int narg, char **arg)
   gamma = 1.0;
   plane_stress = 0;
   cutfactor = 1.1;
+  order = 2;
   bool have_h = false;
 
   int iarg = 0;
@@ -126,6 +133,10 @@ void PairTLSPH::settings(int narg, char **arg)
       if (strcmp(val, "strain") == 0) plane_stress = 0;
       else if (strcmp(val, "stress") == 0) plane_stress = 1;
       else error->all(FLERR, "pair_style tlsph: plane must be 'strain' or 'stress', got '{}'", val);
+    } else if (key == "gradient") {
+      if (strcmp(val, "linear") == 0) order = 1;
+      else if (strcmp(val, "quadratic") == 0) order = 2;
+      else error->all(FLERR, "pair_style tlsph: gradient must be 'linear' or 'quadratic', got '{}'", val);
     } else if (key == "cutfactor") {
       cutfactor = utils::numeric(FLERR, val, false, lmp);
       if (cutfactor < 1.0)
@@ -133,7 +144,7 @@ void PairTLSPH::settings(int narg, char **arg)
     } else {
       error->all(FLERR,
                  "pair_style tlsph: unknown keyword '{}' (allowed: h, alpha, beta, gamma, plane, "
-                 "cutfactor)", key);
+                 "gradient, cutfactor)", key);
     }
     iarg += 2;
   }
@@ -275,7 +286,12 @@ void PairTLSPH::init_style()
   bonds->rebuild = 1;
 
   // forward communication: T always, F for hourglass, H for viscosity
-  comm_forward = 9 * (1 + (gamma != 0.0) + (alpha > 0.0 || beta > 0.0));
+  comm_forward = packed_size();
+
+  // the viscosity reads the partners' velocities, ghosts included: without
+  // this LAMMPS leaves ghost velocities unset (zero) and the result depends on
+  // the domain decomposition (comm->init() runs after this and sizes buffers)
+  if (alpha > 0.0 || beta > 0.0) comm->ghost_velocity = 1;
 
   // sanity checks of the per-particle data against the materials
   const int nlocal = atom->nlocal;
@@ -304,10 +320,10 @@ void PairTLSPH::init_style()
 
 double PairTLSPH::init_one(int i, int j)
 {
-  if (!setflag[i][i])
+  if (!(mat[i].rho > 0.0))
     error->all(FLERR, "pair tlsph: atom type {} has no material: use pair_coeff {} {} E ... nu ... "
                       "rho ...", i, i, i);
-  if (!setflag[j][j])
+  if (!(mat[j].rho > 0.0))
     error->all(FLERR, "pair tlsph: atom type {} has no material: use pair_coeff {} {} E ... nu ... "
                       "rho ...", j, j, j);
   return 2.0 * h * cutfactor;
@@ -326,18 +342,20 @@ double PairTLSPH::max_wave_speed() const
 void PairTLSPH::grow_peratom()
 {
   nmax = atom->nmax;
-  memory->destroy(Ainv);
-  memory->destroy(sumw);
+  memory->destroy(Q);
+  memory->destroy(sumg);
   memory->destroy(F);
-  memory->destroy(T);
-  memory->destroy(H);
+  memory->destroy(P);
+  memory->destroy(fown);
+  memory->destroy(pk);
   memory->destroy(psi);
   memory->destroy(nbond);
-  memory->create(Ainv, nmax, 9, "tlsph:Ainv");
-  memory->create(sumw, nmax, 3, "tlsph:sumw");
+  memory->create(Q, nmax, QMAX, "tlsph:Q");
+  memory->create(sumg, nmax, 3, "tlsph:sumg");
   memory->create(F, nmax, 9, "tlsph:F");
-  memory->create(T, nmax, 9, "tlsph:T");
-  memory->create(H, nmax, 9, "tlsph:H");
+  memory->create(P, nmax, 9, "tlsph:P");
+  memory->create(fown, nmax, 3, "tlsph:fown");
+  memory->create(pk, nmax, packed_size(), "tlsph:packed");
   memory->create(psi, nmax, "tlsph:psi");
   memory->create(nbond, nmax, "tlsph:nbond");
 }
@@ -348,6 +366,7 @@ void PairTLSPH::build_bond_cache()
   double **x0 = atom->x0;
   double *vfrac = atom->vfrac;
   tagint *tag = atom->tag;
+  if (atom->nmax > nmax) grow_peratom();
 
   int total = 0;
   for (int i = 0; i < nlocal; i++) total += bonds->npartner[i];
@@ -363,11 +382,14 @@ void PairTLSPH::build_bond_cache()
   }
 
   int nb = 0;
+  std::vector<double> vj(bonds->maxpartner);
+  int degraded = 0;
   for (int i = 0; i < nlocal; i++) {
     bond_start[i] = nb;
     const int np = bonds->npartner[i];
     tagint *partner = bonds->partner[i];
     int *state = bonds->state[i];
+    int n = 0;
     for (int k = 0; k < np; k++) {
       if (state[k] != FixTLSPHBonds::INTACT) continue;
       int j = atom->map(partner[k]);
@@ -379,12 +401,21 @@ void PairTLSPH::build_bond_cache()
       double X[3] = {x0[j][0] - x0[i][0], x0[j][1] - x0[i][1], x0[j][2] - x0[i][2]};
       domain->minimum_image(X[0], X[1], X[2]);
       if (dim == 2) X[2] = 0.0;
-      make_bond(kernel, X, vfrac[j], j, k, cache[nb]);
-      nb++;
+      make_bond(kernel, X, vfrac[i], vfrac[j], j, k, cache[nb + n]);
+      vj[n] = vfrac[j];
+      n++;
     }
-    nbond[i] = nb - bond_start[i];
-    correction(&cache[bond_start[i]], nbond[i], dim, Ainv[i], sumw[i]);
+    nbond[i] = n;
+    BondCache *b = &cache[nb];
+    int got;
+    if (dim == 2) got = (order == 1) ? correction<2, 1>(b, n, vj.data(), kernel, Q[i], sumg[i])
+                                     : correction<2, 2>(b, n, vj.data(), kernel, Q[i], sumg[i]);
+    else got = (order == 1) ? correction<3, 1>(b, n, vj.data(), kernel, Q[i], sumg[i])
+                            : correction<3, 2>(b, n, vj.data(), kernel, Q[i], sumg[i]);
+    if (got < order) degraded++;
+    nb += n;
   }
+  ndegraded = degraded;
   bond_start[nlocal] = nb;
 }
 
@@ -414,28 +445,30 @@ struct VirialTally {
 }    // namespace
 
 /* ----------------------------------------------------------------------
-   pass (1): F, stress, and the tensors the force pass needs
+   pass (1): F, stress, and the packed row the force pass reads
 ------------------------------------------------------------------------- */
 
-template <int DIM> void PairTLSPH::compute_deformation()
+template <int DIM, int ORDER> void PairTLSPH::compute_deformation()
 {
   const Rows x{atom->x};
   int *type = atom->type;
   tagint *tag = atom->tag;
+  double *vfrac = atom->vfrac;
   const int nlocal = atom->nlocal;
-  const bool need_H = (alpha > 0.0 || beta > 0.0);
+  const bool need_K = (alpha > 0.0 || beta > 0.0);
 
   for (int i = 0; i < nlocal; i++) {
     double *Fi = F[i];
-    TLSPH::deformation_gradient<DIM>(x, i, &cache[bond_start[i]], nbond[i], Ainv[i], Fi);
+    TLSPH::deformation_gradient<DIM>(x, i, &cache[bond_start[i]], nbond[i], Fi);
     const Material &m = mat[type[i]];
     const IsotropicSVK law{m.lambda, m.mu, DIM == 2 ? plane_stress : 0};
-    double J;
-    psi[i] = stress_tensors(law, DIM, Fi, Ainv[i], T[i], need_H ? H[i] : nullptr, &J);
+    double J, K[9];
+    psi[i] = stress_tensors(law, DIM, Fi, P[i], need_K ? K : nullptr, &J);
     if (!(J > 0.0) || !std::isfinite(psi[i]))
       error->one(FLERR, "pair tlsph: particle {} (type {}) has det(F) = {} at step {}: the "
                         "simulation is unstable (reduce the time step, e.g. fix tlsph/dt, or "
                         "raise alpha/gamma)", tag[i], type[i], J, update->ntimestep);
+    pack_row<DIM, ORDER>(vfrac[i], P[i], Q[i], Fi, need_K ? K : nullptr, sumg[i], pk[i], fown[i]);
   }
 }
 
@@ -443,29 +476,47 @@ template <int DIM> void PairTLSPH::compute_deformation()
    pass (3): stress, viscous and hourglass forces (tlsph_particle.h)
 ------------------------------------------------------------------------- */
 
-template <int DIM, int HG, int VISC, int VIRIAL> void PairTLSPH::compute_forces()
+template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void PairTLSPH::compute_forces()
 {
-  const Rows x{atom->x}, v{atom->v}, Tr{T}, Fr{F}, Hr{H};
+  const Rows x{atom->x}, v{atom->v}, pkr{pk};
   const TypeOf type{atom->type};
-  double **vel = atom->v;
   double **f = atom->f;
   double *vfrac = atom->vfrac;
   const int nlocal = atom->nlocal;
-  // energy tallies advance with time, not during setup
-  const double dt = update->setupflag ? 0.0 : update->dt;
-  double *work_hg = bonds->work_hg;
-  double *work_visc = bonds->work_visc;
+  // the work of these two forces is tallied by the bond fix, which needs the
+  // full-step velocity (FixTLSPHBonds::end_of_step)
+  double **f_hg = bonds->f_hg;
+  double **f_visc = bonds->f_visc;
   const VirialTally tally{virial};
   const PairMaterial *pm = pairmat.data();
 
   for (int i = 0; i < nlocal; i++) {
-    double fs[3] = {0, 0, 0}, fv[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
-    particle_force<DIM, HG, VISC, VIRIAL>(i, vfrac[i], &cache[bond_start[i]], nbond[i], sumw[i],
-                                          x, v, Tr, Fr, Hr, type, pm, h, alpha, beta, gamma, fs,
-                                          fv, fh, tally);
+    double fs[3] = {fown[i][0], fown[i][1], fown[i][2]}, fv[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
+    particle_force<DIM, ORDER, HG, VISC, VIRIAL>(i, vfrac[i], &cache[bond_start[i]], nbond[i], x,
+                                                 v, pkr, type, pm, h, alpha, beta, gamma, P[i],
+                                                 fs, fv, fh, tally);
     for (int d = 0; d < DIM; d++) f[i][d] += fs[d] + fv[d] + fh[d];
-    if (HG) work_hg[i] -= dt * (fh[0] * vel[i][0] + fh[1] * vel[i][1] + fh[2] * vel[i][2]);
-    if (VISC) work_visc[i] -= dt * (fv[0] * vel[i][0] + fv[1] * vel[i][1] + fv[2] * vel[i][2]);
+    for (int d = 0; d < 3; d++) {
+      f_hg[i][d] = fh[d];
+      f_visc[i][d] = fv[d];
+    }
+  }
+}
+
+template <int DIM, int ORDER> void PairTLSPH::dispatch_forces(int hg, int visc, int vir)
+{
+  const int key = hg + 2 * visc + 4 * vir;
+  switch (key) {
+    // clang-format off
+    case 0: compute_forces<DIM, ORDER, 0, 0, 0>(); break;
+    case 1: compute_forces<DIM, ORDER, 1, 0, 0>(); break;
+    case 2: compute_forces<DIM, ORDER, 0, 1, 0>(); break;
+    case 3: compute_forces<DIM, ORDER, 1, 1, 0>(); break;
+    case 4: compute_forces<DIM, ORDER, 0, 0, 1>(); break;
+    case 5: compute_forces<DIM, ORDER, 1, 0, 1>(); break;
+    case 6: compute_forces<DIM, ORDER, 0, 1, 1>(); break;
+    case 7: compute_forces<DIM, ORDER, 1, 1, 1>(); break;
+      // clang-format on
   }
 }
 
@@ -480,34 +531,25 @@ void PairTLSPH::compute(int eflag, int vflag)
     bonds->rebuild = 0;
   }
 
-  if (dim == 2) compute_deformation<2>();
-  else compute_deformation<3>();
+  if (dim == 2) {
+    if (order == 1) compute_deformation<2, 1>();
+    else compute_deformation<2, 2>();
+  } else {
+    if (order == 1) compute_deformation<3, 1>();
+    else compute_deformation<3, 2>();
+  }
 
   comm->forward_comm_pair(this);
 
   const int hg = (gamma != 0.0);
   const int visc = (alpha > 0.0 || beta > 0.0);
   const int vir = vflag_global ? 1 : 0;
-  const int key = hg + 2 * visc + 4 * vir + 8 * (dim == 3);
-  switch (key) {
-    // clang-format off
-    case 0:  compute_forces<2, 0, 0, 0>(); break;
-    case 1:  compute_forces<2, 1, 0, 0>(); break;
-    case 2:  compute_forces<2, 0, 1, 0>(); break;
-    case 3:  compute_forces<2, 1, 1, 0>(); break;
-    case 4:  compute_forces<2, 0, 0, 1>(); break;
-    case 5:  compute_forces<2, 1, 0, 1>(); break;
-    case 6:  compute_forces<2, 0, 1, 1>(); break;
-    case 7:  compute_forces<2, 1, 1, 1>(); break;
-    case 8:  compute_forces<3, 0, 0, 0>(); break;
-    case 9:  compute_forces<3, 1, 0, 0>(); break;
-    case 10: compute_forces<3, 0, 1, 0>(); break;
-    case 11: compute_forces<3, 1, 1, 0>(); break;
-    case 12: compute_forces<3, 0, 0, 1>(); break;
-    case 13: compute_forces<3, 1, 0, 1>(); break;
-    case 14: compute_forces<3, 0, 1, 1>(); break;
-    case 15: compute_forces<3, 1, 1, 1>(); break;
-      // clang-format on
+  if (dim == 2) {
+    if (order == 1) dispatch_forces<2, 1>(hg, visc, vir);
+    else dispatch_forces<2, 2>(hg, visc, vir);
+  } else {
+    if (order == 1) dispatch_forces<3, 1>(hg, visc, vir);
+    else dispatch_forces<3, 2>(hg, visc, vir);
   }
 
   if (eflag_either) {
@@ -525,30 +567,21 @@ void PairTLSPH::compute(int eflag, int vflag)
 
 int PairTLSPH::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
-  const bool hg = (gamma != 0.0), visc = (alpha > 0.0 || beta > 0.0);
+  const int stride = packed_size();
   int m = 0;
   for (int ii = 0; ii < n; ii++) {
-    const int j = list[ii];
-    for (int k = 0; k < 9; k++) buf[m++] = T[j][k];
-    if (hg)
-      for (int k = 0; k < 9; k++) buf[m++] = F[j][k];
-    if (visc)
-      for (int k = 0; k < 9; k++) buf[m++] = H[j][k];
+    const double *row = pk[list[ii]];
+    for (int k = 0; k < stride; k++) buf[m++] = row[k];
   }
   return m;
 }
 
 void PairTLSPH::unpack_forward_comm(int n, int first, double *buf)
 {
-  const bool hg = (gamma != 0.0), visc = (alpha > 0.0 || beta > 0.0);
+  const int stride = packed_size();
   int m = 0;
-  for (int i = first; i < first + n; i++) {
-    for (int k = 0; k < 9; k++) T[i][k] = buf[m++];
-    if (hg)
-      for (int k = 0; k < 9; k++) F[i][k] = buf[m++];
-    if (visc)
-      for (int k = 0; k < 9; k++) H[i][k] = buf[m++];
-  }
+  for (int i = first; i < first + n; i++)
+    for (int k = 0; k < stride; k++) pk[i][k] = buf[m++];
 }
 
 /* ---------------------------------------------------------------------- */
@@ -586,8 +619,9 @@ void PairTLSPH::write_restart(FILE *fp)
 {
   write_restart_settings(fp);
   for (int i = 1; i <= atom->ntypes; i++) {
-    fwrite(&setflag[i][i], sizeof(int), 1, fp);
-    if (setflag[i][i]) {
+    const int has_material = (mat[i].rho > 0.0);
+    fwrite(&has_material, sizeof(int), 1, fp);
+    if (has_material) {
       double v[3] = {mat[i].E, mat[i].nu, mat[i].rho};
       fwrite(v, sizeof(double), 3, fp);
     }
@@ -600,9 +634,10 @@ void PairTLSPH::read_restart(FILE *fp)
   allocate();
   const int me = comm->me;
   for (int i = 1; i <= atom->ntypes; i++) {
-    if (me == 0) utils::sfread(FLERR, &setflag[i][i], sizeof(int), 1, fp, nullptr, error);
-    MPI_Bcast(&setflag[i][i], 1, MPI_INT, 0, world);
-    if (setflag[i][i]) {
+    int has_material = 0;
+    if (me == 0) utils::sfread(FLERR, &has_material, sizeof(int), 1, fp, nullptr, error);
+    MPI_Bcast(&has_material, 1, MPI_INT, 0, world);
+    if (has_material) {
       double v[3];
       if (me == 0) utils::sfread(FLERR, v, sizeof(double), 3, fp, nullptr, error);
       MPI_Bcast(v, 3, MPI_DOUBLE, 0, world);
@@ -612,25 +647,23 @@ void PairTLSPH::read_restart(FILE *fp)
       set_material(i, words, "restart file");
     }
   }
-  for (int i = 1; i <= atom->ntypes; i++)
-    for (int j = i + 1; j <= atom->ntypes; j++) setflag[i][j] = (setflag[i][i] && setflag[j][j]);
 }
 
 void PairTLSPH::write_restart_settings(FILE *fp)
 {
-  double v[6] = {h, alpha, beta, gamma, (double) plane_stress, cutfactor};
-  fwrite(v, sizeof(double), 6, fp);
+  double v[7] = {h, alpha, beta, gamma, (double) plane_stress, cutfactor, (double) order};
+  fwrite(v, sizeof(double), 7, fp);
   fwrite(&dim, sizeof(int), 1, fp);
 }
 
 void PairTLSPH::read_restart_settings(FILE *fp)
 {
-  double v[6];
+  double v[7];
   if (comm->me == 0) {
-    utils::sfread(FLERR, v, sizeof(double), 6, fp, nullptr, error);
+    utils::sfread(FLERR, v, sizeof(double), 7, fp, nullptr, error);
     utils::sfread(FLERR, &dim, sizeof(int), 1, fp, nullptr, error);
   }
-  MPI_Bcast(v, 6, MPI_DOUBLE, 0, world);
+  MPI_Bcast(v, 7, MPI_DOUBLE, 0, world);
   MPI_Bcast(&dim, 1, MPI_INT, 0, world);
   h = v[0];
   alpha = v[1];
@@ -638,12 +671,13 @@ void PairTLSPH::read_restart_settings(FILE *fp)
   gamma = v[3];
   plane_stress = static_cast<int>(v[4]);
   cutfactor = v[5];
+  order = static_cast<int>(v[6]);
   kernel = CubicSpline(h, dim);
 }
 
 double PairTLSPH::memory_usage()
 {
-  double bytes = (double) nmax * (49 * sizeof(double) + sizeof(int));
+  double bytes = (double) nmax * ((QMAX + 25 + packed_size()) * sizeof(double) + sizeof(int));
   bytes += (double) ncache_max * sizeof(BondCache) + nstart_max * sizeof(int);
   return bytes;
 }

@@ -74,6 +74,8 @@ class PairTLSPH : public Pair {
   double gamma;           // hourglass coefficient
   int plane_stress;       // 2D: 1 plane stress, 0 plane strain
   double cutfactor;       // ghost cutoff = cutfactor * 2h
+  int order;              // gradient correction: 1 linear (thesis), 2 quadratic
+  int ndegraded;          // local particles whose correction fell back to a lower order
   int dim;
   TLSPH::CubicSpline kernel;
 
@@ -85,11 +87,17 @@ class PairTLSPH : public Pair {
 
   // per-atom arrays (nmax)
   int nmax;
-  double **Ainv;      // inverse correction matrix A_i^-1
-  double **sumw;      // sum_j w_ij over the cached bonds
+  double **Q;         // gradient correction (TLSPH::correction), DIM x basis size
+  double **sumg;      // sum_j g_ij over the cached bonds
   double **F;         // deformation gradient
-  double **T;         // P_i A_i^-1 (communicated)
-  double **H;         // J_i F_i^-T A_i^-1 (communicated when viscosity is on)
+  double **P;         // first Piola-Kirchhoff stress
+  double **fown;      // V_i P_i sum_j g_ij
+  double **pk;        // packed rows R = V P Q, F, K = J F^-T (TLSPH::Packed), communicated
+  int packed_size() const
+  {
+    if (dim == 2) return order == 1 ? TLSPH::Packed<2, 1>::size : TLSPH::Packed<2, 2>::size;
+    return order == 1 ? TLSPH::Packed<3, 1>::size : TLSPH::Packed<3, 2>::size;
+  }
   double *psi;        // strain energy density
   int *nbond;         // # of cached (intact) bonds
   void grow_peratom();
@@ -100,8 +108,9 @@ class PairTLSPH : public Pair {
   int ncache_max, nstart_max;
   void build_bond_cache();
 
-  template <int DIM> void compute_deformation();
-  template <int DIM, int HG, int VISC, int VIRIAL> void compute_forces();
+  template <int DIM, int ORDER> void compute_deformation();
+  template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void compute_forces();
+  template <int DIM, int ORDER> void dispatch_forces(int hg, int visc, int vir);
 
   void allocate();
 };

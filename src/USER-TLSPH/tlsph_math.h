@@ -127,6 +127,46 @@ TLSPH_INLINE void add_outer(double *A, const double *a, const double *b)
     for (int c = 0; c < 3; ++c) A[3 * r + c] += a[r] * b[c];
 }
 
+/* In-place Gauss-Jordan inversion of a small dense n x n matrix (n <= 9),
+   row-major, with partial pivoting. M is destroyed; Minv receives the
+   inverse. Returns false if a pivot vanishes. */
+TLSPH_INLINE bool invert_small(int n, double *M, double *Minv)
+{
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) Minv[n * r + c] = (r == c) ? 1.0 : 0.0;
+  for (int col = 0; col < n; ++col) {
+    int piv = col;
+    double best = std::fabs(M[n * col + col]);
+    for (int r = col + 1; r < n; ++r)
+      if (std::fabs(M[n * r + col]) > best) best = std::fabs(M[n * r + col]), piv = r;
+    if (best == 0.0) return false;
+    if (piv != col)
+      for (int c = 0; c < n; ++c) {
+        double t = M[n * col + c];
+        M[n * col + c] = M[n * piv + c];
+        M[n * piv + c] = t;
+        t = Minv[n * col + c];
+        Minv[n * col + c] = Minv[n * piv + c];
+        Minv[n * piv + c] = t;
+      }
+    const double s = 1.0 / M[n * col + col];
+    for (int c = 0; c < n; ++c) {
+      M[n * col + c] *= s;
+      Minv[n * col + c] *= s;
+    }
+    for (int r = 0; r < n; ++r) {
+      if (r == col) continue;
+      const double f = M[n * r + col];
+      if (f == 0.0) continue;
+      for (int c = 0; c < n; ++c) {
+        M[n * r + c] -= f * M[n * col + c];
+        Minv[n * r + c] -= f * Minv[n * col + c];
+      }
+    }
+  }
+  return true;
+}
+
 }    // namespace TLSPH
 
 #endif

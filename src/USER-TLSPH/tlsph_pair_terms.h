@@ -40,10 +40,11 @@ TLSPH_INLINE void hourglass_force(const double *Fi, const double *Fj, const doub
   fi[2] = s * xij[2];
 }
 
-/* Monaghan artificial viscosity in reference separations (thesis Eq. 2.17-2.18)
-   returned as a pressure q_ij = rho (-alpha c mu_ij + beta mu_ij^2) >= 0, with
-   mu_ij = h (v_i - v_j).(X_i - X_j) / (|Xij|^2 + 0.01 h^2) when the pair
-   approaches, else 0.  dvX = (v_j - v_i).Xij = (v_i - v_j).(X_i - X_j). */
+/* Monaghan artificial viscosity (thesis Eq. 2.17-2.18) returned as a
+   pressure q_ij = rho (-alpha c mu_ij + beta mu_ij^2) >= 0, with
+   mu_ij = h dvX / (r2 + 0.01 h^2) when the pair approaches (dvX < 0), else 0.
+   dvX = (v_j - v_i).d and r2 = |d|^2 for the separation d; particle_force()
+   uses the current separation x_ij (objective), the thesis the reference X_ij. */
 TLSPH_INLINE double viscous_pressure(double dvX, double X2, double h, double alpha, double beta,
                                      double c, double rho)
 {

@@ -5,6 +5,16 @@
    and meant for Kokkos functors: particle data are read through small
    accessor objects (`rows(j)` returns a pointer to row j), so the same code
    serves LAMMPS's double** arrays, std::vector storage or Kokkos views.
+
+   Corrected gradient, in one form for both orders (doc: "Corrected
+   gradient"):  g_ij = V_j w_ij Q_i p(X_ij / h),
+     Q_i = first DIM rows of  M_i^-1 / h,   M_i = sum_j V_j w_ij p p^T,
+   with, for ORDER 1 (the thesis), p(s) = s and w = -W'(r)/r, which is
+   exactly A_i^-1 grad_i W_ij; and for ORDER 2, p(s) = (s, quadratic
+   monomials of s) and w = W(r) (moving least squares), which reproduces
+   the gradient of every quadratic field, also at free surfaces.
+   F_i = I + sum_j (u_j - u_i) (x) g_ij, and the variationally consistent
+   force is f_i = V_i P_i sum_j g_ij - sum_j V_j P_j g_ji.
 ------------------------------------------------------------------------- */
 
 #ifndef TLSPH_PARTICLE_H
@@ -19,104 +29,227 @@ namespace TLSPH {
 // geometric data of one intact bond i -> j (reference configuration)
 struct Bond {
   double X[3];    // X_j - X_i
-  double w[3];    // V_j grad_i W_ij
+  double g[3];    // corrected gradient g_ij (includes V_j)
+  double c;       // V_i w_ij: weight of the reverse gradient g_ji = c Q_j p(-X_ij/h)
+  double wv;      // V_j (-W'(r)/r): V_j grad_i W_ij = wv X_ij (uncorrected, viscosity)
   double whg;     // V_j W_ij / |X_ij|^2 (hourglass weight)
   int j;          // index of the partner in the particle arrays
   int k;          // slot of the bond in the owner's bond row
 };
 
-// fill the reference data of a bond from X_ij and the partner's volume
-TLSPH_INLINE void make_bond(const CubicSpline &kernel, const double *Xij, double Vj, int j, int k,
-                            Bond &b)
+// the polynomial basis of the corrected gradient
+template <int DIM, int ORDER> struct Basis {
+  static constexpr int size = (ORDER == 1) ? DIM : (DIM == 2 ? 5 : 9);
+  TLSPH_INLINE static void eval(const double *s, double *p)
+  {
+    for (int d = 0; d < DIM; d++) p[d] = s[d];
+    if (ORDER == 2) {
+      if (DIM == 2) {
+        p[2] = s[0] * s[0];
+        p[3] = s[0] * s[1];
+        p[4] = s[1] * s[1];
+      } else {
+        p[3] = s[0] * s[0];
+        p[4] = s[1] * s[1];
+        p[5] = s[2] * s[2];
+        p[6] = s[0] * s[1];
+        p[7] = s[0] * s[2];
+        p[8] = s[1] * s[2];
+      }
+    }
+  }
+};
+
+// largest size of a Q row block (DIM x basis size)
+constexpr int QMAX = 27;
+
+// fill the reference data of a bond from X_ij and the two volumes
+// (g and c are completed by correction())
+TLSPH_INLINE void make_bond(const CubicSpline &kernel, const double *Xij, double Vi, double Vj,
+                            int j, int k, Bond &b)
 {
   b.X[0] = Xij[0];
   b.X[1] = Xij[1];
   b.X[2] = Xij[2];
   const double r = std::sqrt(dot3(Xij, Xij));
-  double g[3];
-  kernel.gradient(Xij, r, g);
-  b.w[0] = Vj * g[0];
-  b.w[1] = Vj * g[1];
-  b.w[2] = Vj * g[2];
-  b.whg = Vj * kernel.value(r) / (r * r);
+  const double W = kernel.value(r);
+  const double dW = kernel.derivative(r);
+  b.g[0] = b.g[1] = b.g[2] = 0.0;
+  b.c = Vi;    // times w_ij, set by correction()
+  b.wv = -Vj * dW / r;
+  b.whg = Vj * W / (r * r);
   b.j = j;
   b.k = k;
 }
 
-// a correction matrix whose condition number exceeds this is treated as
-// singular: the particle has too few partners to define a gradient
-constexpr double MAX_CONDITION = 1.0e6;
+// condition numbers above these mean: too few partners to define a gradient
+constexpr double MAX_CONDITION_LINEAR = 1.0e6;
+constexpr double MAX_CONDITION_QUADRATIC = 1.0e9;
 
-/* Correction matrix A_i = sum_j w_ij (x) X_ij, so that
-   F = I + sum_j (u_j - u_i) (x) A_i^-1 w_ij is exact for affine motion.
-   Writes A_i^-1 (zero when A is ill-conditioned: the particle then carries
-   no stress of its own but still feels its partners') and s_i = sum_j w_ij.
-   Returns false for the ill-conditioned case. */
-TLSPH_INLINE bool correction(const Bond *b, int nb, int dim, double *Ainv, double *sumw)
+namespace detail {
+// w_ij of the given order for a bond (reconstructed from the stored weights)
+TLSPH_INLINE double bond_weight(const Bond &b, const CubicSpline &kernel, int order)
 {
-  double A[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-  sumw[0] = sumw[1] = sumw[2] = 0.0;
-  for (int m = 0; m < nb; m++) {
-    add_outer(A, b[m].w, b[m].X);
-    sumw[0] += b[m].w[0];
-    sumw[1] += b[m].w[1];
-    sumw[2] += b[m].w[2];
-  }
-  if (dim == 2) {
-    A[2] = A[5] = A[6] = A[7] = 0.0;
-    A[8] = 1.0;
-  }
-  double Ai[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-  const double det = mat_inverse(A, Ai);
-  const bool ok = nb >= dim && det > 0.0 && mat_norm(A) * mat_norm(Ai) < MAX_CONDITION;
-  if (ok) mat_copy(Ai, Ainv);
-  else mat_zero(Ainv);
-  return ok;
+  const double r = std::sqrt(dot3(b.X, b.X));
+  return order == 1 ? -kernel.derivative(r) / r : kernel.value(r);
 }
 
-/* F_i = I + (sum_j (u_j - u_i) (x) w_ij) A_i^-T, with u = x - X and the
-   reference bond vector X_ij taken from the bond. x(j) returns x_j. */
-template <int DIM, class Rows>
-TLSPH_INLINE void deformation_gradient(const Rows &x, int i, const Bond *b, int nb,
-                                       const double *Ainv, double *F)
+template <int DIM, int ORDER>
+TLSPH_INLINE bool solve_correction(const Bond *b, int nb, const double *Vj,
+                                   const CubicSpline &kernel, double *Q)
 {
-  double G[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  constexpr int NB = Basis<DIM, ORDER>::size;
+  double M[NB * NB], Mi[NB * NB], Mc[NB * NB];
+  for (int k = 0; k < NB * NB; k++) M[k] = 0.0;
+  const double inv_h = 1.0 / kernel.h;
+  for (int m = 0; m < nb; m++) {
+    double s[3] = {b[m].X[0] * inv_h, b[m].X[1] * inv_h, b[m].X[2] * inv_h}, p[NB];
+    Basis<DIM, ORDER>::eval(s, p);
+    const double w = Vj[m] * bond_weight(b[m], kernel, ORDER);
+    for (int r = 0; r < NB; r++)
+      for (int c = 0; c < NB; c++) M[NB * r + c] += w * p[r] * p[c];
+  }
+  for (int k = 0; k < NB * NB; k++) Mc[k] = M[k];
+  if (nb < NB || !invert_small(NB, Mc, Mi)) return false;
+  double nM = 0.0, nMi = 0.0;
+  for (int k = 0; k < NB * NB; k++) nM += M[k] * M[k], nMi += Mi[k] * Mi[k];
+  const double cond = std::sqrt(nM * nMi);
+  if (!(cond < (ORDER == 1 ? MAX_CONDITION_LINEAR : MAX_CONDITION_QUADRATIC))) return false;
+  for (int r = 0; r < DIM; r++)
+    for (int c = 0; c < NB; c++) Q[NB * r + c] = Mi[NB * r + c] * inv_h;
+  return true;
+}
+}    // namespace detail
+
+/* Corrected gradients of particle i (see the header comment). Vj[m] is the
+   volume of the partner of bond m. Writes Q_i (DIM x Basis::size, row-major)
+   and s_i = sum_j g_ij, completes g and c of every bond. A quadratic
+   correction that is ill-conditioned (corner particles) falls back to the
+   W-weighted linear one in the same layout; if that also fails Q = 0: the
+   particle carries no stress of its own (F = I) but still feels its
+   partners'. Returns 2, 1 or 0: the order actually achieved. */
+template <int DIM, int ORDER>
+TLSPH_INLINE int correction(Bond *b, int nb, const double *Vj, const CubicSpline &kernel,
+                            double *Q, double *sumg)
+{
+  constexpr int NB = Basis<DIM, ORDER>::size;
+  for (int k = 0; k < DIM * NB; k++) Q[k] = 0.0;
+  int achieved = 0;
+  int weight_order = ORDER;
+  if (detail::solve_correction<DIM, ORDER>(b, nb, Vj, kernel, Q)) achieved = ORDER;
+  else if (ORDER == 2) {
+    // linear W-weighted fallback in the quadratic layout: zero quadratic columns
+    constexpr int NL = DIM;
+    double QL[DIM * DIM];
+    // same weights as the quadratic basis (w = W), linear basis
+    double M[NL * NL], Mc[NL * NL], Mi[NL * NL];
+    for (int k = 0; k < NL * NL; k++) M[k] = 0.0;
+    const double inv_h = 1.0 / kernel.h;
+    for (int m = 0; m < nb; m++) {
+      const double w = Vj[m] * detail::bond_weight(b[m], kernel, 2);
+      for (int r = 0; r < NL; r++)
+        for (int c = 0; c < NL; c++) M[NL * r + c] += w * b[m].X[r] * b[m].X[c] * inv_h * inv_h;
+    }
+    for (int k = 0; k < NL * NL; k++) Mc[k] = M[k];
+    if (nb >= DIM && invert_small(NL, Mc, Mi)) {
+      double nM = 0.0, nMi = 0.0;
+      for (int k = 0; k < NL * NL; k++) nM += M[k] * M[k], nMi += Mi[k] * Mi[k];
+      if (std::sqrt(nM * nMi) < MAX_CONDITION_LINEAR) {
+        for (int k = 0; k < NL * NL; k++) QL[k] = Mi[k] * inv_h;
+        for (int r = 0; r < DIM; r++)
+          for (int c = 0; c < DIM; c++) Q[NB * r + c] = QL[NL * r + c];
+        achieved = 1;
+      }
+    }
+  }
+  sumg[0] = sumg[1] = sumg[2] = 0.0;
+  const double inv_h = 1.0 / kernel.h;
+  for (int m = 0; m < nb; m++) {
+    const double w = detail::bond_weight(b[m], kernel, weight_order);
+    double s[3] = {b[m].X[0] * inv_h, b[m].X[1] * inv_h, b[m].X[2] * inv_h}, p[NB];
+    Basis<DIM, ORDER>::eval(s, p);
+    for (int r = 0; r < 3; r++) b[m].g[r] = 0.0;
+    for (int r = 0; r < DIM; r++) {
+      double acc = 0.0;
+      for (int c = 0; c < NB; c++) acc += Q[NB * r + c] * p[c];
+      b[m].g[r] = Vj[m] * w * acc;
+      sumg[r] += b[m].g[r];
+    }
+    b[m].c *= w;    // make_bond stored V_i
+  }
+  return achieved;
+}
+
+/* F_i = I + sum_j (u_j - u_i) (x) g_ij, with u = x - X and the reference
+   bond vector X_ij taken from the bond. x(j) returns x_j. */
+template <int DIM, class Rows>
+TLSPH_INLINE void deformation_gradient(const Rows &x, int i, const Bond *b, int nb, double *F)
+{
   const double *xi = x(i);
+  mat_identity(F);
   for (int m = 0; m < nb; m++) {
     const double *xj = x(b[m].j);
     double du[3];
     for (int d = 0; d < DIM; d++) du[d] = (xj[d] - xi[d]) - b[m].X[d];
     for (int r = 0; r < DIM; r++)
-      for (int c = 0; c < DIM; c++) G[3 * r + c] += du[r] * b[m].w[c];
+      for (int c = 0; c < DIM; c++) F[3 * r + c] += du[r] * b[m].g[c];
   }
-  double GA[9];
-  mat_mult(G, Ainv, GA);    // G A^-T
-  mat_identity(F);
-  for (int r = 0; r < DIM; r++)
-    for (int c = 0; c < DIM; c++) F[3 * r + c] += GA[3 * r + c];
 }
 
-/* From F: strain energy density (returned), T = P A^-1 with P = F S, and,
-   if H is not null, H = J F^-T A^-1 (viscosity mapping). In 2D plane
-   stress F33 is set from E33. *J receives det(F). */
-TLSPH_INLINE double stress_tensors(const IsotropicSVK &law, int dim, double *F, const double *Ainv,
-                                   double *T, double *H, double *J)
+/* From F: strain energy density (returned), the first Piola-Kirchhoff
+   stress P = F S, and, if K is not null, K = J F^-T (viscosity mapping).
+   In 2D plane stress F33 is set from E33. *J receives det(F). */
+TLSPH_INLINE double stress_tensors(const IsotropicSVK &law, int dim, double *F, double *P,
+                                   double *K, double *J)
 {
-  double E[9], S[9], P[9];
+  double E[9], S[9];
   green_lagrange(F, E);
   const double psi = law.stress(E, S);
   if (dim == 2 && law.plane_stress) F[8] = std::sqrt(1.0 + 2.0 * E[8]);
   *J = mat_det(F);
   mat_mul(F, S, P);
-  mat_mul(P, Ainv, T);
-  if (H) {
-    double Finv[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, FinvT[9];
+  if (K) {
+    double Finv[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     mat_inverse(F, Finv);
-    mat_transpose(Finv, FinvT);
-    mat_mul(FinvT, Ainv, H);
-    for (int k = 0; k < 9; k++) H[k] *= *J;
+    for (int r = 0; r < 3; r++)
+      for (int c = 0; c < 3; c++) K[3 * r + c] = *J * Finv[3 * c + r];
   }
   return psi;
+}
+
+/* The per-particle row the force pass reads for every partner (and that
+   ghosts receive), blocks back to back, row-major:
+     R = V P Q  (DIM x Basis::size),  F (DIM x DIM),  K = J F^-T (DIM x DIM).
+   2D: 8 + 4 + 4 (linear) or 14 + 4 + 4 (quadratic); 3D: 27 or 45. */
+template <int DIM, int ORDER> struct Packed {
+  static constexpr int NB = Basis<DIM, ORDER>::size;
+  static constexpr int R = 0;
+  static constexpr int F = DIM * NB;
+  static constexpr int K = DIM * NB + DIM * DIM;
+  static constexpr int size = DIM * NB + 2 * DIM * DIM;
+};
+
+/* Fill particle i's packed row and its own force term V_i P_i s_i. */
+template <int DIM, int ORDER>
+TLSPH_INLINE void pack_row(double Vi, const double *P, const double *Q, const double *F,
+                           const double *K, const double *sumg, double *row, double *fown)
+{
+  using L = Packed<DIM, ORDER>;
+  constexpr int NB = L::NB;
+  for (int r = 0; r < DIM; r++) {
+    for (int c = 0; c < NB; c++) {
+      double acc = 0.0;
+      for (int k = 0; k < DIM; k++) acc += P[3 * r + k] * Q[NB * k + c];
+      row[L::R + NB * r + c] = Vi * acc;
+    }
+    for (int c = 0; c < DIM; c++) {
+      row[L::F + DIM * r + c] = F[3 * r + c];
+      row[L::K + DIM * r + c] = K ? K[3 * r + c] : 0.0;
+    }
+  }
+  for (int r = 0; r < 3; r++) fown[r] = 0.0;
+  for (int r = 0; r < DIM; r++)
+    for (int c = 0; c < DIM; c++) fown[r] += Vi * P[3 * r + c] * sumg[c];
 }
 
 // material numbers the force pass needs, per particle type
@@ -128,76 +261,95 @@ struct NoBondVisitor {
   TLSPH_INLINE void operator()(int, const double *, const double *) const {}
 };
 
-/* Force on particle i (added to fs: stress, fv: viscous, fh: hourglass):
-     f_i = V_i sum_j [ (T_i + T_j) w_ij - q_ij (H_i + H_j) w_ij / 2 ] + f_i^HG
-   Accessors x, v, T, F, H return rows; type(j) the particle type; mat[type]
-   the material numbers. visit(j, xij, fij) is called with the total bond
-   force on i when VISIT is set (virial tallies). */
-template <int DIM, int HG, int VISC, int VISIT, class Rows, class Types, class Visitor>
-TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const double *sumw,
-                                 const Rows &x, const Rows &v, const Rows &T, const Rows &F,
-                                 const Rows &H, const Types &type, const PairMaterial *mat,
-                                 double h, double alpha, double beta, double gamma,
-                                 double *fs, double *fv, double *fh, const Visitor &visit)
+/* Force on particle i from its bonds, added to fs (stress), fv (viscous)
+   and fh (hourglass); fown = V_i P_i s_i must be added to fs separately.
+     stress:   - sum_j V_j P_j g_ji  =  - sum_j R_j c_ij p(-X_ij/h)
+     viscous:  - V_i sum_j q_ij (K_i + K_j) V_j grad_i W_ij / 2, with
+               q_ij from the approach rate (v_j - v_i).x_ij (objective)
+     hourglass: Ganzenmueller's pair force along x_ij (tlsph_pair_terms.h)
+   Accessors x, v return position/velocity rows, pk the packed rows, type(j)
+   the particle type; mat[type] the material numbers. When VISIT is set,
+   visit(j, xij, fij) receives the total bond force on i (virial tallies);
+   Pi (the own stress) is then needed, otherwise it may be null. */
+template <int DIM, int ORDER, int HG, int VISC, int VISIT, class Rows, class Types, class Visitor>
+TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const Rows &x,
+                                 const Rows &v, const Rows &pk, const Types &type,
+                                 const PairMaterial *mat, double h, double alpha, double beta,
+                                 double gamma, const double *Pi, double *fs, double *fv,
+                                 double *fh, const Visitor &visit)
 {
-  const double *Ti = T(i);
+  using L = Packed<DIM, ORDER>;
+  constexpr int NB = L::NB;
+  const double inv_h = 1.0 / h;
+  const double *pi = pk(i);
   const double *xi = x(i);
+  const double *vi = v(i);
   const int ti = type(i);
-  double acc[3] = {0, 0, 0};
-  mat_vec(Ti, sumw, acc);
   for (int m = 0; m < nb; m++) {
     const int j = b[m].j;
-    const double *w = b[m].w;
-    const double *Tj = T(j);
+    const double *pj = pk(j);
     double fb[3] = {0.0, 0.0, 0.0};
+    double s[3] = {-b[m].X[0] * inv_h, -b[m].X[1] * inv_h, -b[m].X[2] * inv_h}, p[NB];
+    Basis<DIM, ORDER>::eval(s, p);
     for (int r = 0; r < DIM; r++) {
-      double s = 0.0;
-      for (int c = 0; c < DIM; c++) s += Tj[3 * r + c] * w[c];
-      acc[r] += s;
+      double acc = 0.0;
+      for (int c = 0; c < NB; c++) acc += pj[L::R + NB * r + c] * p[c];
+      fs[r] -= b[m].c * acc;
       if (VISIT) {
-        double si = 0.0;
-        for (int c = 0; c < DIM; c++) si += Ti[3 * r + c] * w[c];
-        fb[r] = Vi * (s + si);
+        double own = 0.0;
+        for (int c = 0; c < DIM; c++) own += Pi[3 * r + c] * b[m].g[c];
+        fb[r] = Vi * own - b[m].c * acc;
       }
     }
     const double *xj = x(j);
     double xij[3] = {0.0, 0.0, 0.0};
     for (int d = 0; d < DIM; d++) xij[d] = xj[d] - xi[d];
     if (VISC) {
-      const double *vi = v(i), *vj = v(j);
+      // approach rate measured along the current separation x_ij, not the
+      // reference X_ij of the thesis: identical for small deformation, and
+      // zero for a rigid rotation (objective). Branch-free: q = 0 for
+      // separating pairs (a data-dependent branch is mispredicted half the time).
+      const double *vj = v(j);
       double dvX = 0.0, X2 = 0.0;
       for (int d = 0; d < DIM; d++) {
-        dvX += (vj[d] - vi[d]) * b[m].X[d];
-        X2 += b[m].X[d] * b[m].X[d];
+        dvX += (vj[d] - vi[d]) * xij[d];
+        X2 += xij[d] * xij[d];
       }
-      if (dvX < 0.0) {
-        const int tj = type(j);
-        const double c = 0.5 * (mat[ti].c0 + mat[tj].c0);
-        const double rho = 0.5 * (mat[ti].rho + mat[tj].rho);
-        const double q = viscous_pressure(dvX, X2, h, alpha, beta, c, rho);
-        const double *Hi = H(i), *Hj = H(j);
-        for (int r = 0; r < DIM; r++) {
-          double s = 0.0;
-          for (int c2 = 0; c2 < DIM; c2++) s += (Hi[3 * r + c2] + Hj[3 * r + c2]) * w[c2];
-          const double fr = -0.5 * q * Vi * s;
-          fv[r] += fr;
-          if (VISIT) fb[r] += fr;
-        }
+      const int tj = type(j);
+      const double c = 0.5 * (mat[ti].c0 + mat[tj].c0);
+      const double rho = 0.5 * (mat[ti].rho + mat[tj].rho);
+      const double mu = h * (dvX < 0.0 ? dvX : 0.0) / (X2 + 0.01 * h * h);
+      const double q = rho * mu * (beta * mu - alpha * c);
+      const double sv = -0.5 * q * Vi * b[m].wv;
+      for (int r = 0; r < DIM; r++) {
+        double acc = 0.0;
+        for (int c2 = 0; c2 < DIM; c2++)
+          acc += (pi[L::K + DIM * r + c2] + pj[L::K + DIM * r + c2]) * b[m].X[c2];
+        fv[r] += sv * acc;
+        if (VISIT) fb[r] += sv * acc;
       }
     }
     if (HG) {
-      const double Ebar = 0.5 * (mat[ti].E + mat[type(j)].E);
-      const double coeff = 0.5 * gamma * Ebar * Vi * b[m].whg;
-      double fhb[3];
-      hourglass_force(F(i), F(j), b[m].X, xij, coeff, fhb);
-      for (int d = 0; d < DIM; d++) {
-        fh[d] += fhb[d];
-        if (VISIT) fb[d] += fhb[d];
+      // (delta_ij + delta_ji) |x_ij| = ((F_i + F_j) X_ij - 2 x_ij) . x_ij, see hourglass_force()
+      double ex = 0.0, r2 = 0.0;
+      for (int r = 0; r < DIM; r++) {
+        double e = -2.0 * xij[r];
+        for (int c2 = 0; c2 < DIM; c2++)
+          e += (pi[L::F + DIM * r + c2] + pj[L::F + DIM * r + c2]) * b[m].X[c2];
+        ex += e * xij[r];
+        r2 += xij[r] * xij[r];
+      }
+      if (r2 > 0.0) {
+        const double Ebar = 0.5 * (mat[ti].E + mat[type(j)].E);
+        const double sh = -0.5 * gamma * Ebar * Vi * b[m].whg * ex / r2;
+        for (int d = 0; d < DIM; d++) {
+          fh[d] += sh * xij[d];
+          if (VISIT) fb[d] += sh * xij[d];
+        }
       }
     }
     if (VISIT) visit(j, xij, fb);
   }
-  for (int d = 0; d < DIM; d++) fs[d] += Vi * acc[d];
 }
 
 }    // namespace TLSPH

@@ -12,6 +12,7 @@
 #include "error.h"
 #include "fix_tlsph_bonds.h"
 #include "fix_tlsph_dt.h"
+#include "fix_tlsph_relax.h"
 #include "force.h"
 #include "lammps.h"
 #include "modify.h"
@@ -56,6 +57,8 @@ const FixEntry fix_styles[] = {
     {"TLSPH_BONDS", "internal: reference partners and bond state of pair tlsph",
      &fix_creator<FixTLSPHBonds>},
     {"tlsph/dt", "CFL time step for pair tlsph", &fix_creator<FixTLSPHDt>},
+    {"tlsph/relax", "kinetic damping (dynamic relaxation) for quasi-static scenes",
+     &fix_creator<FixTLSPHRelax>},
 };
 const ComputeEntry compute_styles[] = {
     {"tlsph/stress/atom", "Cauchy stress of pair tlsph", &compute_creator<ComputeTLSPHTensorAtom>},

@@ -1,0 +1,58 @@
+# tlsph: set-up, build, main example, tests. On a fresh Debian 12 (as root):
+#   make run     installs what is missing, builds, runs the main example
+#   make test    same set-up and build, then the whole test suite (ctest)
+# Caches (LAMMPS source, PLUGIN-enabled LAMMPS) live outside the checkout, in
+# $(TLSPH_CACHE) (default ~/.cache/tlsph): a second run is fast.
+
+BUILD        ?= build
+MAIN_EXAMPLE ?= cantilever-2d
+JOBS         ?= 2
+PYTHON       ?= /usr/bin/python3
+CMAKE_ARGS   ?=
+
+SHELL := /bin/bash
+BUILD_ABS = $(abspath $(BUILD))
+
+# exported to the scripts, the examples and the tests
+export TLSPH_BUILD = $(BUILD_ABS)
+export TLSPH_PYTHON = $(PYTHON)
+export LMP_TLSPH = $(BUILD_ABS)/lmp_tlsph
+export TLSPH_PLUGIN = $(BUILD_ABS)/tlsphplugin.so
+
+.PHONY: all setup configure build run test bench clean
+
+all: build
+
+setup:
+	bash scripts/setup.sh >/dev/null
+
+# setup.sh prints the matching LAMMPS source tree as its only stdout line;
+# cmake runs when the build dir is new, the source tree changed or CMAKE_ARGS
+# are given (later CMakeLists.txt edits re-run it through ninja anyway)
+configure:
+	@set -e; src="$$(bash scripts/setup.sh)"; \
+	if [ ! -f "$(BUILD)/build.ninja" ] || [ -n "$(CMAKE_ARGS)" ] || \
+	   ! grep -qxF "LAMMPS_SOURCE_DIR:PATH=$$src" "$(BUILD)/CMakeCache.txt" 2>/dev/null; then \
+	  echo "cmake -S . -B $(BUILD) -G Ninja -DLAMMPS_SOURCE_DIR=$$src $(CMAKE_ARGS)"; \
+	  cmake -S . -B "$(BUILD)" -G Ninja -DLAMMPS_SOURCE_DIR="$$src" \
+	        -DTLSPH_PYTHON=$(PYTHON) $(CMAKE_ARGS); \
+	fi
+
+build: configure
+	ninja -C "$(BUILD)" -j$(JOBS)
+
+run: build
+	@set -e; ex=examples/$(MAIN_EXAMPLE); \
+	if [ -f "$$ex/run.sh" ]; then echo "running $$ex/run.sh"; bash "$$ex/run.sh"; \
+	elif [ -f "$$ex/Makefile" ]; then $(MAKE) -C "$$ex"; \
+	else echo "make run: no $$ex/run.sh (or Makefile): main example '$(MAIN_EXAMPLE)' missing" >&2; exit 1; fi
+
+test: build
+	ctest --test-dir "$(BUILD)" --output-on-failure --parallel $(JOBS)
+
+bench: build
+	@if [ -f bench/run.sh ]; then bash bench/run.sh; \
+	else echo "make bench: bench/run.sh not present yet" >&2; exit 1; fi
+
+clean:
+	rm -rf "$(BUILD)"

@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# Builds an `lmp` with the PLUGIN package (plus PERI for atom_style peri) from
+# the same Debian LAMMPS source tree the package compiles against, so that
+# `plugin load tlsphplugin.so` can be tested. Cached, keyed by the source version:
+#
+#   ${TLSPH_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/tlsph}/lammps-plugin-<source version>/
+#       build/         LAMMPS's own CMake build
+#       bin/lmp        the executable (RUNPATH $ORIGIN/../lib)
+#       lib/liblammps_plugin.so.0
+#         (LAMMPS_MACHINE=plugin: a library name of its own, so that it can
+#          never be mixed up with Debian's liblammps.so.0)
+#
+# Nothing is done when bin/lmp exists. The last line on stdout is the path of
+# bin/lmp. Uses `ninja -j${TLSPH_JOBS:-2}`.
+#
+# Why BUILD_SHARED_LIBS=on: in this LAMMPS version (20220106) the CMake build
+# defines LMP_PLUGIN (without which `plugin load` is a no-op that only prints
+# a warning) only for a shared-library build; the plugin's undefined LAMMPS
+# symbols then resolve against that liblammps.so.0. Class layout: this build
+# and Debian's liblammps both use -DLAMMPS_SMALLBIG and no LAMMPS_EXCEPTIONS,
+# the flags the plugin is compiled with (CMakeLists.txt of this project).
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+
+log() { printf 'build-lammps-plugin.sh: %s\n' "$*" >&2; }
+die() { printf 'build-lammps-plugin.sh: error: %s\n' "$*" >&2; exit 1; }
+
+HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd -P)
+JOBS=${TLSPH_JOBS:-2}
+
+# source tree: from the caller (must match the installed version, checked
+# below) or from setup.sh (which fetches it when missing)
+if [ -z "${LAMMPS_SOURCE_DIR:-}" ]; then
+  LAMMPS_SOURCE_DIR=$(bash "$HERE/setup.sh" | tail -n1)
+fi
+[ -f "$LAMMPS_SOURCE_DIR/cmake/CMakeLists.txt" ] || die "no LAMMPS source tree at '$LAMMPS_SOURCE_DIR'"
+
+SRC_VER=$(dpkg-query -W -f='${source:Version}' liblammps-dev)
+[ -n "$SRC_VER" ] || die "cannot read the source version of liblammps-dev"
+CACHE=${TLSPH_CACHE:-${XDG_CACHE_HOME:-${HOME:-/root}/.cache}/tlsph}
+mkdir -p "$CACHE"
+CACHE=$(cd "$CACHE" && pwd -P)
+PREFIX="$CACHE/lammps-plugin-$SRC_VER"
+LMP="$PREFIX/bin/lmp"
+
+if [ ! -x "$LMP" ]; then
+  mkdir -p "$PREFIX"
+  exec 9>"$PREFIX/.lock"          # one build at a time per cache
+  flock 9
+fi
+if [ ! -x "$LMP" ]; then
+  # the tree must be the installed version: same date check as CMakeLists.txt
+  # (version.h against the installed LAMMPSConfigVersion.cmake), and for a
+  # Debian tree the exact source version from its changelog
+  v=$(sed -n 's/.*LAMMPS_VERSION *"\([0-9]*\) \([A-Za-z]*\) \([0-9]*\)".*/\1 \2 \3/p' "$LAMMPS_SOURCE_DIR/src/version.h")
+  vdate=$(LC_ALL=C date -d "$v" +%Y%m%d)
+  cfg=$(dpkg-query -L liblammps-dev | grep -m1 '/LAMMPSConfigVersion.cmake$')
+  idate=$(sed -n 's/^ *set(PACKAGE_VERSION "\([0-9]*\)").*/\1/p' "$cfg")
+  [ "$vdate" = "$idate" ] ||
+    die "LAMMPS source in $LAMMPS_SOURCE_DIR is version $vdate, the installed liblammps is $idate"
+  if [ -f "$LAMMPS_SOURCE_DIR/debian/changelog" ]; then
+    tver=$(dpkg-parsechangelog -l "$LAMMPS_SOURCE_DIR/debian/changelog" -S Version)
+    [ "$tver" = "$SRC_VER" ] ||
+      die "LAMMPS source in $LAMMPS_SOURCE_DIR is Debian $tver, the installed liblammps is from $SRC_VER"
+  fi
+
+  BUILD="$PREFIX/build"
+  log "building LAMMPS $SRC_VER with PLUGIN+PERI in $BUILD (ninja -j$JOBS; takes a while the first time)"
+  start=$(date +%s)
+  # Everything optional off: no package but PLUGIN and PERI, no OpenMP, no
+  # image/movie/compression helpers, no downloads, no tests, no docs.
+  cmake -S "$LAMMPS_SOURCE_DIR/cmake" -B "$BUILD" -G Ninja \
+    -D CMAKE_BUILD_TYPE=Release \
+    -D CMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
+    -D BUILD_MPI=on -D BUILD_OMP=off -D BUILD_SHARED_LIBS=on \
+    -D LAMMPS_MACHINE=plugin -D LAMMPS_SIZES=smallbig -D LAMMPS_EXCEPTIONS=off \
+    -D PKG_PLUGIN=on -D PKG_PERI=on \
+    -D PKG_KSPACE=off -D PKG_MANYBODY=off -D PKG_MOLECULE=off -D PKG_RIGID=off \
+    -D PKG_PYTHON=off -D PKG_OPENMP=off -D PKG_KOKKOS=off -D PKG_GPU=off \
+    -D WITH_JPEG=off -D WITH_PNG=off -D WITH_GZIP=off -D WITH_FFMPEG=off \
+    -D BUILD_TOOLS=off -D BUILD_LAMMPS_SHELL=off -D BUILD_DOC=off \
+    -D ENABLE_TESTING=off -D WITH_SWIG=off \
+    -D CMAKE_INSTALL_RPATH='$ORIGIN/../lib' -D CMAKE_BUILD_WITH_INSTALL_RPATH=on \
+    -D CMAKE_SKIP_INSTALL_RPATH=off -D Python_EXECUTABLE=/usr/bin/python3 >&2
+  ninja -C "$BUILD" -j"$JOBS" lmp_plugin >&2
+
+  # symbols a dlopen()ed plugin needs are exported by the shared library
+  so="$BUILD/liblammps_plugin.so.0"
+  syms=$(nm -D --defined-only "$so")
+  grep -q ' T _ZN9LAMMPS_NS4PairC2EPNS_6LAMMPSE$' <<<"$syms" ||
+    die "$so does not export LAMMPS_NS::Pair::Pair(LAMMPS*)"
+  grep -q ' T _ZN9LAMMPS_NS15plugin_registerEP14lammpsplugin_tPv$' <<<"$syms" ||
+    die "$so has no LAMMPS_NS::plugin_register: PLUGIN package not built"
+
+  mkdir -p "$PREFIX/bin" "$PREFIX/lib"
+  cp -a "$BUILD"/liblammps_plugin.so* "$PREFIX/lib/"
+  cp "$BUILD/lmp_plugin" "$PREFIX/bin/lmp.tmp"
+  # it must load our library, and 'plugin' must be a working command
+  # (LMP_PLUGIN defined), not the "Ignoring plugin command" stub
+  deps=$(ldd "$PREFIX/bin/lmp.tmp")
+  grep -q 'liblammps_plugin.so.0 => /' <<<"$deps" && ! grep -q 'liblammps.so' <<<"$deps" ||
+    { printf '%s\n' "$deps" >&2; die "$PREFIX/bin/lmp.tmp does not load lib/liblammps_plugin.so.0"; }
+  out=$(cd "$PREFIX" && echo "plugin list" | "$PREFIX/bin/lmp.tmp" -log none -echo none 2>&1) || true
+  grep -q "Currently loaded plugins" <<<"$out" || { printf '%s\n' "$out" >&2;
+    die "'plugin list' does not work in $PREFIX/bin/lmp.tmp"; }
+  mv "$PREFIX/bin/lmp.tmp" "$LMP"      # last: its presence marks a complete build
+  log "built in $(( $(date +%s) - start )) s: $LMP"
+fi
+printf '%s\n' "$LMP"
