@@ -18,7 +18,9 @@
 #include "update.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 
 using namespace LAMMPS_NS;
 using namespace TLSPH;
@@ -227,13 +229,30 @@ void PairTLSPH::coeff(int narg, char **arg)
     for (int j = i + 1; j <= ntypes; j++) setflag[i][j] = (setflag[i][i] && setflag[j][j]);
 }
 
+/* Debian's LAMMPS ignores $LAMMPS_POTENTIALS (its potential path is fixed to
+   /usr/share/lammps/potentials), so material files are also looked up in
+   $TLSPH_POTENTIALS and in the package's own potentials/ folder. */
+static std::string find_material_file(const std::string &file)
+{
+  auto readable = [](const std::string &p) { return std::ifstream(p).good(); };
+  if (readable(file) || file.find('/') != std::string::npos) return file;
+  std::vector<std::string> dirs;
+  if (const char *env = getenv("TLSPH_POTENTIALS")) dirs.emplace_back(env);
+#ifdef TLSPH_POTENTIALS_DIR
+  dirs.emplace_back(TLSPH_POTENTIALS_DIR);
+#endif
+  for (const auto &d : dirs)
+    if (readable(d + "/" + file)) return d + "/" + file;
+  return file;    // LAMMPS's own search and error message
+}
+
 void PairTLSPH::read_material_file(const std::string &file, int ntypes, char **names)
 {
   // every rank reads the (small) file; lines: name key value key value ...
   std::vector<std::vector<std::string>> found(ntypes + 1);
   std::vector<bool> have(ntypes + 1, false);
   {
-    PotentialFileReader reader(lmp, file, "tlsph material");
+    PotentialFileReader reader(lmp, find_material_file(file), "tlsph material");
     char *line;
     while ((line = reader.next_line())) {
       std::vector<std::string> words = Tokenizer(line, " \t\n\r\f").as_vector();
