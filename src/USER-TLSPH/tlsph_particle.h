@@ -304,21 +304,24 @@ TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const 
     const double *xj = x(j);
     double xij[3] = {0.0, 0.0, 0.0};
     for (int d = 0; d < DIM; d++) xij[d] = xj[d] - xi[d];
+    // one division serves both denominators: 1/r2 (hourglass) and
+    // 1/(r2 + 0.01 h^2) (viscosity)
+    double r2 = 0.0;
+    for (int d = 0; d < DIM; d++) r2 += xij[d] * xij[d];
+    const double eps2 = 0.01 * h * h;
+    const double inv_both = (HG || VISC) ? 1.0 / (r2 * (r2 + eps2)) : 0.0;
     if (VISC) {
       // approach rate measured along the current separation x_ij, not the
       // reference X_ij of the thesis: identical for small deformation, and
       // zero for a rigid rotation (objective). Branch-free: q = 0 for
       // separating pairs (a data-dependent branch is mispredicted half the time).
       const double *vj = v(j);
-      double dvX = 0.0, X2 = 0.0;
-      for (int d = 0; d < DIM; d++) {
-        dvX += (vj[d] - vi[d]) * xij[d];
-        X2 += xij[d] * xij[d];
-      }
+      double dvX = 0.0;
+      for (int d = 0; d < DIM; d++) dvX += (vj[d] - vi[d]) * xij[d];
       const int tj = type(j);
       const double c = 0.5 * (mat[ti].c0 + mat[tj].c0);
       const double rho = 0.5 * (mat[ti].rho + mat[tj].rho);
-      const double mu = h * (dvX < 0.0 ? dvX : 0.0) / (X2 + 0.01 * h * h);
+      const double mu = h * (dvX < 0.0 ? dvX : 0.0) * r2 * inv_both;
       const double q = rho * mu * (beta * mu - alpha * c);
       const double sv = -0.5 * q * Vi * b[m].wv;
       for (int r = 0; r < DIM; r++) {
@@ -329,23 +332,20 @@ TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const 
         if (VISIT) fb[r] += sv * acc;
       }
     }
-    if (HG) {
+    if (HG && r2 > 0.0) {
       // (delta_ij + delta_ji) |x_ij| = ((F_i + F_j) X_ij - 2 x_ij) . x_ij, see hourglass_force()
-      double ex = 0.0, r2 = 0.0;
+      double ex = 0.0;
       for (int r = 0; r < DIM; r++) {
         double e = -2.0 * xij[r];
         for (int c2 = 0; c2 < DIM; c2++)
           e += (pi[L::F + DIM * r + c2] + pj[L::F + DIM * r + c2]) * b[m].X[c2];
         ex += e * xij[r];
-        r2 += xij[r] * xij[r];
       }
-      if (r2 > 0.0) {
-        const double Ebar = 0.5 * (mat[ti].E + mat[type(j)].E);
-        const double sh = -0.5 * gamma * Ebar * Vi * b[m].whg * ex / r2;
-        for (int d = 0; d < DIM; d++) {
-          fh[d] += sh * xij[d];
-          if (VISIT) fb[d] += sh * xij[d];
-        }
+      const double Ebar = 0.5 * (mat[ti].E + mat[type(j)].E);
+      const double sh = -0.5 * gamma * Ebar * Vi * b[m].whg * ex * (r2 + eps2) * inv_both;
+      for (int d = 0; d < DIM; d++) {
+        fh[d] += sh * xij[d];
+        if (VISIT) fb[d] += sh * xij[d];
       }
     }
     if (VISIT) visit(j, xij, fb);
