@@ -14,6 +14,7 @@
 #include "neighbor.h"
 #include "update.h"
 
+#include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -164,6 +165,27 @@ void FixTLSPHBonds::find_partners()
 {
   if (cutoff <= 0.0) error->all(FLERR, "TLSPH_BONDS: search radius not set by pair tlsph");
   first = 0;
+
+  // the neighbor list is built from current positions: partners within 2h
+  // of X are all in it only if no particle has moved too far from x0 yet
+  {
+    double **x = atom->x, **x0 = atom->x0;
+    double dmax = 0.0;
+    for (int i = 0; i < atom->nlocal; i++) {
+      double d[3] = {x[i][0] - x0[i][0], x[i][1] - x0[i][1], x[i][2] - x0[i][2]};
+      domain->minimum_image(d[0], d[1], d[2]);
+      dmax = MAX(dmax, d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    }
+    double dall;
+    MPI_Allreduce(&dmax, &dall, 1, MPI_DOUBLE, MPI_MAX, world);
+    dall = sqrt(dall);
+    const double margin = 0.5 * (neighbor->cutneighmax - cutoff);
+    if (dall > margin)
+      error->all(FLERR, "TLSPH bonds: a particle is {:.4g} away from its reference position x0 at "
+                        "the first run, more than the {:.4g} the partner search can bridge: "
+                        "find the partners first (run 0) and displace afterwards, or raise the "
+                        "neighbor skin", dall, margin);
+  }
   neighbor->build_one(list);
 
   double **x0 = atom->x0;

@@ -281,35 +281,47 @@ TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const 
   using L = Packed<DIM, ORDER>;
   constexpr int NB = L::NB;
   const double inv_h = 1.0 / h;
+  const double eps2 = 0.01 * h * h;
+  // particle i's own blocks and material, held in registers for the bond loop
+  // (local accumulators too: the outputs could alias the particle arrays)
   const double *pi = pk(i);
-  const double *xi = x(i);
-  const double *vi = v(i);
+  double Fi[DIM * DIM], xi[DIM], vi[DIM];
+  for (int k = 0; k < DIM * DIM; k++) Fi[k] = pi[L::F + k];
+  const double *xr = x(i), *vr = v(i);
+  for (int d = 0; d < DIM; d++) xi[d] = xr[d], vi[d] = vr[d];
   const int ti = type(i);
+  const PairMaterial mi = mat[ti];
+  double as[DIM], av[DIM], avi[DIM], ah[DIM];
+  for (int d = 0; d < DIM; d++) as[d] = av[d] = avi[d] = ah[d] = 0.0;
+
   for (int m = 0; m < nb; m++) {
-    const int j = b[m].j;
+    const Bond &bm = b[m];
+    const int j = bm.j;
     const double *pj = pk(j);
     double fb[3] = {0.0, 0.0, 0.0};
-    double s[3] = {-b[m].X[0] * inv_h, -b[m].X[1] * inv_h, -b[m].X[2] * inv_h}, p[NB];
+    double s[3] = {-bm.X[0] * inv_h, -bm.X[1] * inv_h, -bm.X[2] * inv_h}, p[NB];
     Basis<DIM, ORDER>::eval(s, p);
     for (int r = 0; r < DIM; r++) {
       double acc = 0.0;
       for (int c = 0; c < NB; c++) acc += pj[L::R + NB * r + c] * p[c];
-      fs[r] -= b[m].c * acc;
+      as[r] -= bm.c * acc;
       if (VISIT) {
         double own = 0.0;
-        for (int c = 0; c < DIM; c++) own += Pi[3 * r + c] * b[m].g[c];
-        fb[r] = Vi * own - b[m].c * acc;
+        for (int c = 0; c < DIM; c++) own += Pi[3 * r + c] * bm.g[c];
+        fb[r] = Vi * own - bm.c * acc;
       }
     }
     const double *xj = x(j);
     double xij[3] = {0.0, 0.0, 0.0};
-    for (int d = 0; d < DIM; d++) xij[d] = xj[d] - xi[d];
+    double r2 = 0.0;
+    for (int d = 0; d < DIM; d++) {
+      xij[d] = xj[d] - xi[d];
+      r2 += xij[d] * xij[d];
+    }
     // one division serves both denominators: 1/r2 (hourglass) and
     // 1/(r2 + 0.01 h^2) (viscosity)
-    double r2 = 0.0;
-    for (int d = 0; d < DIM; d++) r2 += xij[d] * xij[d];
-    const double eps2 = 0.01 * h * h;
     const double inv_both = (HG || VISC) ? 1.0 / (r2 * (r2 + eps2)) : 0.0;
+    const PairMaterial &mj = mat[type(j)];
     if (VISC) {
       // approach rate measured along the current separation x_ij, not the
       // reference X_ij of the thesis: identical for small deformation, and
@@ -318,18 +330,22 @@ TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const 
       const double *vj = v(j);
       double dvX = 0.0;
       for (int d = 0; d < DIM; d++) dvX += (vj[d] - vi[d]) * xij[d];
-      const int tj = type(j);
-      const double c = 0.5 * (mat[ti].c0 + mat[tj].c0);
-      const double rho = 0.5 * (mat[ti].rho + mat[tj].rho);
+      const double c = 0.5 * (mi.c0 + mj.c0);
+      const double rho = 0.5 * (mi.rho + mj.rho);
       const double mu = h * (dvX < 0.0 ? dvX : 0.0) * r2 * inv_both;
       const double q = rho * mu * (beta * mu - alpha * c);
-      const double sv = -0.5 * q * Vi * b[m].wv;
+      const double sv = -0.5 * q * Vi * bm.wv;
+      // (K_i + K_j) X_ij: the K_i part is applied once after the loop
+      for (int d = 0; d < DIM; d++) avi[d] += sv * bm.X[d];
       for (int r = 0; r < DIM; r++) {
         double acc = 0.0;
-        for (int c2 = 0; c2 < DIM; c2++)
-          acc += (pi[L::K + DIM * r + c2] + pj[L::K + DIM * r + c2]) * b[m].X[c2];
-        fv[r] += sv * acc;
-        if (VISIT) fb[r] += sv * acc;
+        for (int c2 = 0; c2 < DIM; c2++) acc += pj[L::K + DIM * r + c2] * bm.X[c2];
+        av[r] += sv * acc;
+        if (VISIT) {
+          double acci = 0.0;
+          for (int c2 = 0; c2 < DIM; c2++) acci += pi[L::K + DIM * r + c2] * bm.X[c2];
+          fb[r] += sv * (acc + acci);
+        }
       }
     }
     if (HG && r2 > 0.0) {
@@ -337,18 +353,25 @@ TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const 
       double ex = 0.0;
       for (int r = 0; r < DIM; r++) {
         double e = -2.0 * xij[r];
-        for (int c2 = 0; c2 < DIM; c2++)
-          e += (pi[L::F + DIM * r + c2] + pj[L::F + DIM * r + c2]) * b[m].X[c2];
+        for (int c2 = 0; c2 < DIM; c2++) e += (Fi[DIM * r + c2] + pj[L::F + DIM * r + c2]) * bm.X[c2];
         ex += e * xij[r];
       }
-      const double Ebar = 0.5 * (mat[ti].E + mat[type(j)].E);
-      const double sh = -0.5 * gamma * Ebar * Vi * b[m].whg * ex * (r2 + eps2) * inv_both;
+      const double Ebar = 0.5 * (mi.E + mj.E);
+      const double sh = -0.5 * gamma * Ebar * Vi * bm.whg * ex * (r2 + eps2) * inv_both;
       for (int d = 0; d < DIM; d++) {
-        fh[d] += sh * xij[d];
+        ah[d] += sh * xij[d];
         if (VISIT) fb[d] += sh * xij[d];
       }
     }
     if (VISIT) visit(j, xij, fb);
+  }
+  for (int r = 0; r < DIM; r++) {
+    fs[r] += as[r];
+    fh[r] += ah[r];
+    double acc = av[r];
+    if (VISC)
+      for (int c = 0; c < DIM; c++) acc += pi[L::K + DIM * r + c] * avi[c];
+    fv[r] += acc;
   }
 }
 
