@@ -39,7 +39,9 @@ PairTLSPH::PairTLSPH(LAMMPS *lmp) : Pair(lmp)
   plane_stress = 0;
   cutfactor = 1.1;
   order = 2;
+  thickness = 1.0;
   ndegraded = 0;
+  report_fallback = 1;
   dim = 3;
   nmax = 0;
   Q = sumg = F = P = fown = pk = nullptr;
@@ -108,6 +110,7 @@ void PairTLSPH::settings(int narg, char **arg)
   plane_stress = 0;
   cutfactor = 1.1;
   order = 2;
+  thickness = 1.0;
   bool have_h = false;
 
   int iarg = 0;
@@ -135,6 +138,13 @@ void PairTLSPH::settings(int narg, char **arg)
       if (strcmp(val, "strain") == 0) plane_stress = 0;
       else if (strcmp(val, "stress") == 0) plane_stress = 1;
       else error->all(FLERR, "pair_style tlsph: plane must be 'strain' or 'stress', got '{}'", val);
+    } else if (key == "thickness") {
+      if (dim != 2)
+        error->all(FLERR, "pair_style tlsph: keyword 'thickness' is only allowed with dimension 2 "
+                          "(this simulation is 3D)");
+      thickness = utils::numeric(FLERR, val, false, lmp);
+      if (thickness <= 0.0)
+        error->all(FLERR, "pair_style tlsph: thickness must be > 0, got {}", val);
     } else if (key == "gradient") {
       if (strcmp(val, "linear") == 0) order = 1;
       else if (strcmp(val, "quadratic") == 0) order = 2;
@@ -146,7 +156,7 @@ void PairTLSPH::settings(int narg, char **arg)
     } else {
       error->all(FLERR,
                  "pair_style tlsph: unknown keyword '{}' (allowed: h, alpha, beta, gamma, plane, "
-                 "gradient, cutfactor)", key);
+                 "thickness, gradient, cutfactor)", key);
     }
     iarg += 2;
   }
@@ -306,6 +316,10 @@ void PairTLSPH::init_style()
 
   // forward communication: T always, F for hourglass, H for viscosity
   comm_forward = packed_size();
+  // the packed rows change size with the gradient order and dimension:
+  // reallocate the per-atom arrays at the next force call
+  nmax = 0;
+  report_fallback = 1;
 
   // the viscosity reads the partners' velocities, ghosts included: without
   // this LAMMPS leaves ghost velocities unset (zero) and the result depends on
@@ -400,6 +414,7 @@ void PairTLSPH::build_bond_cache()
     memory->create(bond_start, nstart_max, "tlsph:bond_start");
   }
 
+  const double kernel_scale = (dim == 2) ? 1.0 / thickness : 1.0;
   int nb = 0;
   std::vector<double> vj(bonds->maxpartner);
   int degraded = 0;
@@ -420,7 +435,7 @@ void PairTLSPH::build_bond_cache()
       double X[3] = {x0[j][0] - x0[i][0], x0[j][1] - x0[i][1], x0[j][2] - x0[i][2]};
       domain->minimum_image(X[0], X[1], X[2]);
       if (dim == 2) X[2] = 0.0;
-      make_bond(kernel, X, vfrac[i], vfrac[j], j, k, cache[nb + n]);
+      make_bond(kernel, X, vfrac[i], vfrac[j], j, k, cache[nb + n], kernel_scale);
       vj[n] = vfrac[j];
       n++;
     }
@@ -548,6 +563,16 @@ void PairTLSPH::compute(int eflag, int vflag)
   if (bonds->rebuild) {
     build_bond_cache();
     bonds->rebuild = 0;
+    if (report_fallback) {
+      // once per run: how many particles could not get the requested gradient order
+      report_fallback = 0;
+      int all = 0;
+      MPI_Allreduce(&ndegraded, &all, 1, MPI_INT, MPI_SUM, world);
+      if (all && comm->me == 0)
+        utils::logmesg(lmp, "pair tlsph: {} particle(s) have too few or degenerate partners for "
+                            "the {} gradient correction and use a lower order (see doc)\n",
+                       all, order == 2 ? "quadratic" : "linear");
+    }
   }
 
   if (dim == 2) {
@@ -670,19 +695,20 @@ void PairTLSPH::read_restart(FILE *fp)
 
 void PairTLSPH::write_restart_settings(FILE *fp)
 {
-  double v[7] = {h, alpha, beta, gamma, (double) plane_stress, cutfactor, (double) order};
-  fwrite(v, sizeof(double), 7, fp);
+  double v[8] = {h,         alpha, beta, gamma, (double) plane_stress,
+                 cutfactor, (double) order, thickness};
+  fwrite(v, sizeof(double), 8, fp);
   fwrite(&dim, sizeof(int), 1, fp);
 }
 
 void PairTLSPH::read_restart_settings(FILE *fp)
 {
-  double v[7];
+  double v[8];
   if (comm->me == 0) {
-    utils::sfread(FLERR, v, sizeof(double), 7, fp, nullptr, error);
+    utils::sfread(FLERR, v, sizeof(double), 8, fp, nullptr, error);
     utils::sfread(FLERR, &dim, sizeof(int), 1, fp, nullptr, error);
   }
-  MPI_Bcast(v, 7, MPI_DOUBLE, 0, world);
+  MPI_Bcast(v, 8, MPI_DOUBLE, 0, world);
   MPI_Bcast(&dim, 1, MPI_INT, 0, world);
   h = v[0];
   alpha = v[1];
@@ -691,6 +717,7 @@ void PairTLSPH::read_restart_settings(FILE *fp)
   plane_stress = static_cast<int>(v[4]);
   cutfactor = v[5];
   order = static_cast<int>(v[6]);
+  thickness = v[7];
   kernel = CubicSpline(h, dim);
 }
 

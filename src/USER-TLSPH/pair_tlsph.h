@@ -75,7 +75,9 @@ class PairTLSPH : public Pair {
   int plane_stress;       // 2D: 1 plane stress, 0 plane strain
   double cutfactor;       // ghost cutoff = cutfactor * 2h
   int order;              // gradient correction: 1 linear (thesis), 2 quadratic
+  double thickness;       // 2D: out-of-plane thickness contained in the particle volumes
   int ndegraded;          // local particles whose correction fell back to a lower order
+  int report_fallback;    // 1: log the fallback count at the next bond-cache build
   int dim;
   TLSPH::CubicSpline kernel;
 

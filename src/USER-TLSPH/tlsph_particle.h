@@ -64,9 +64,12 @@ template <int DIM, int ORDER> struct Basis {
 constexpr int QMAX = 27;
 
 // fill the reference data of a bond from X_ij and the two volumes
-// (g and c are completed by correction())
+// (g and c are completed by correction()). kernel_scale converts a volume
+// into the measure the kernel is normalised over: 1 in 3D, 1/thickness in
+// 2D (the kernel is normalised per area), so that the viscous and hourglass
+// terms scale with the thickness exactly like the stress term.
 TLSPH_INLINE void make_bond(const CubicSpline &kernel, const double *Xij, double Vi, double Vj,
-                            int j, int k, Bond &b)
+                            int j, int k, Bond &b, double kernel_scale = 1.0)
 {
   b.X[0] = Xij[0];
   b.X[1] = Xij[1];
@@ -76,8 +79,8 @@ TLSPH_INLINE void make_bond(const CubicSpline &kernel, const double *Xij, double
   const double dW = kernel.derivative(r);
   b.g[0] = b.g[1] = b.g[2] = 0.0;
   b.c = Vi;    // times w_ij, set by correction()
-  b.wv = -Vj * dW / r;
-  b.whg = Vj * W / (r * r);
+  b.wv = -Vj * kernel_scale * dW / r;
+  b.whg = Vj * kernel_scale * W / (r * r);
   b.j = j;
   b.k = k;
 }
@@ -220,7 +223,7 @@ TLSPH_INLINE double stress_tensors(const IsotropicSVK &law, int dim, double *F, 
 /* The per-particle row the force pass reads for every partner (and that
    ghosts receive), blocks back to back, row-major:
      R = V P Q  (DIM x Basis::size),  F (DIM x DIM),  K = J F^-T (DIM x DIM).
-   2D: 8 + 4 + 4 (linear) or 14 + 4 + 4 (quadratic); 3D: 27 or 45. */
+   2D: 4 + 4 + 4 (linear) or 10 + 4 + 4 (quadratic); 3D: 9 + 9 + 9 or 27 + 9 + 9. */
 template <int DIM, int ORDER> struct Packed {
   static constexpr int NB = Basis<DIM, ORDER>::size;
   static constexpr int R = 0;
