@@ -183,7 +183,9 @@ void PairTLSPH::set_material(int type, const std::vector<std::string> &words,
     if (key == "E") E = v, hE = true;
     else if (key == "nu") nu = v, hnu = true;
     else if (key == "rho") rho = v, hrho = true;
-    else error->all(FLERR, "{}: unknown material keyword '{}' (allowed: {})", where, key, MATERIAL_KEYS);
+    else if (!material_key(type, key, v, where))
+      error->all(FLERR, "{}: unknown material keyword '{}' (allowed: {}{})", where, key,
+                 MATERIAL_KEYS, extra_material_keys());
   }
   if (!hE) error->all(FLERR, "{}: missing material value 'E' (Young's modulus)", where);
   if (!hnu) error->all(FLERR, "{}: missing material value 'nu' (Poisson's ratio)", where);
@@ -201,6 +203,7 @@ void PairTLSPH::set_material(int type, const std::vector<std::string> &words,
   m.mu = lame_mu(E, nu);
   m.c0 = wave_speed(m.lambda, m.mu, rho);
   pairmat[type] = PairMaterial{m.c0, m.rho, m.E};
+  check_material(type, where);
 }
 
 void PairTLSPH::coeff(int narg, char **arg)
@@ -324,7 +327,7 @@ void PairTLSPH::init_style()
   // the viscosity reads the partners' velocities, ghosts included: without
   // this LAMMPS leaves ghost velocities unset (zero) and the result depends on
   // the domain decomposition (comm->init() runs after this and sizes buffers)
-  if (alpha > 0.0 || beta > 0.0) comm->ghost_velocity = 1;
+  if (viscosity_active()) comm->ghost_velocity = 1;
 
   // sanity checks of the per-particle data against the materials
   const int nlocal = atom->nlocal;
@@ -421,33 +424,44 @@ void PairTLSPH::build_bond_cache()
   for (int i = 0; i < nlocal; i++) {
     bond_start[i] = nb;
     const int np = bonds->npartner[i];
+    if (np > (int) vj.size()) vj.resize(np);
     tagint *partner = bonds->partner[i];
     int *state = bonds->state[i];
+    // intact bonds first, then (for correction_from_all_partners) the broken
+    // ones, which only enter the correction matrix
     int n = 0;
-    for (int k = 0; k < np; k++) {
-      if (state[k] != FixTLSPHBonds::INTACT) continue;
-      int j = atom->map(partner[k]);
-      if (j < 0)
-        error->one(FLERR, "pair tlsph: partner {} of particle {} is farther away than the ghost "
-                          "cutoff at step {}: raise comm_modify cutoff or pair_style cutfactor",
-                   partner[k], tag[i], update->ntimestep);
-      j = domain->closest_image(i, j);
-      double X[3] = {x0[j][0] - x0[i][0], x0[j][1] - x0[i][1], x0[j][2] - x0[i][2]};
-      domain->minimum_image(X[0], X[1], X[2]);
-      if (dim == 2) X[2] = 0.0;
-      make_bond(kernel, X, vfrac[i], vfrac[j], j, k, cache[nb + n], kernel_scale);
-      vj[n] = vfrac[j];
-      n++;
+    for (int pass = 0; pass < 2; pass++) {
+      if (pass == 1 && !correction_from_all_partners) break;
+      for (int k = 0; k < np; k++) {
+        if ((state[k] == FixTLSPHBonds::INTACT) != (pass == 0)) continue;
+        int j = atom->map(partner[k]);
+        if (j < 0) {
+          if (pass == 1) continue;    // a broken partner may have left the ghost shell
+          error->one(FLERR, "pair tlsph: partner {} of particle {} is farther away than the "
+                            "ghost cutoff at step {}: raise comm_modify cutoff or pair_style "
+                            "cutfactor", partner[k], tag[i], update->ntimestep);
+        }
+        j = domain->closest_image(i, j);
+        double X[3] = {x0[j][0] - x0[i][0], x0[j][1] - x0[i][1], x0[j][2] - x0[i][2]};
+        domain->minimum_image(X[0], X[1], X[2]);
+        if (dim == 2) X[2] = 0.0;
+        make_bond(kernel, X, vfrac[i], vfrac[j], j, k, cache[nb + n], kernel_scale);
+        vj[n] = vfrac[j];
+        n++;
+      }
+      if (pass == 0) nbond[i] = n;
     }
-    nbond[i] = n;
+    const int nall = n;
+    n = nbond[i];
     BondCache *b = &cache[nb];
-    int got;
-    if (dim == 2) got = (order == 1) ? correction<2, 1>(b, n, vj.data(), kernel, Q[i], sumg[i])
-                                     : correction<2, 2>(b, n, vj.data(), kernel, Q[i], sumg[i]);
-    else got = (order == 1) ? correction<3, 1>(b, n, vj.data(), kernel, Q[i], sumg[i])
-                            : correction<3, 2>(b, n, vj.data(), kernel, Q[i], sumg[i]);
-    if (got < order) degraded++;
-    nb += n;
+    if (correct_particle(i, b, nall, vj.data()) < order) degraded++;
+    if (nall > n) {
+      // broken bonds entered the correction only: sum_j g_ij runs over intact ones
+      sumg[i][0] = sumg[i][1] = sumg[i][2] = 0.0;
+      for (int m = 0; m < n; m++)
+        for (int d = 0; d < 3; d++) sumg[i][d] += b[m].g[d];
+    }
+    nb += nall;
   }
   ndegraded = degraded;
   bond_start[nlocal] = nb;
@@ -478,6 +492,17 @@ struct VirialTally {
 };
 }    // namespace
 
+/* corrected gradients of particle i over the bonds b[0..n) (vj: partner
+   volumes); returns the order achieved */
+int PairTLSPH::correct_particle(int i, BondCache *b, int n, const double *vj)
+{
+  if (dim == 2)
+    return (order == 1) ? correction<2, 1>(b, n, vj, kernel, Q[i], sumg[i])
+                        : correction<2, 2>(b, n, vj, kernel, Q[i], sumg[i]);
+  return (order == 1) ? correction<3, 1>(b, n, vj, kernel, Q[i], sumg[i])
+                      : correction<3, 2>(b, n, vj, kernel, Q[i], sumg[i]);
+}
+
 /* ----------------------------------------------------------------------
    pass (1): F, stress, and the packed row the force pass reads
 ------------------------------------------------------------------------- */
@@ -489,7 +514,7 @@ template <int DIM, int ORDER> void PairTLSPH::compute_deformation()
   tagint *tag = atom->tag;
   double *vfrac = atom->vfrac;
   const int nlocal = atom->nlocal;
-  const bool need_K = (alpha > 0.0 || beta > 0.0);
+  const bool need_K = viscosity_active();
 
   for (int i = 0; i < nlocal; i++) {
     double *Fi = F[i];
@@ -502,7 +527,8 @@ template <int DIM, int ORDER> void PairTLSPH::compute_deformation()
       error->one(FLERR, "pair tlsph: particle {} (type {}) has det(F) = {} at step {}: the "
                         "simulation is unstable (reduce the time step, e.g. fix tlsph/dt, or "
                         "raise alpha/gamma)", tag[i], type[i], J, update->ntimestep);
-    pack_row<DIM, ORDER>(vfrac[i], P[i], Q[i], Fi, need_K ? K : nullptr, sumg[i], pk[i], fown[i]);
+    pack_row<DIM, ORDER>(vfrac[i], P[i], Q[i], Fi, need_K ? K : nullptr,
+                         alpha_atom ? alpha_atom[i] : alpha, sumg[i], pk[i], fown[i]);
   }
 }
 
@@ -527,7 +553,7 @@ template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void PairTLSPH::comp
   for (int i = 0; i < nlocal; i++) {
     double fs[3] = {fown[i][0], fown[i][1], fown[i][2]}, fv[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
     particle_force<DIM, ORDER, HG, VISC, VIRIAL>(i, vfrac[i], &cache[bond_start[i]], nbond[i], x,
-                                                 v, pkr, type, pm, h, alpha, beta, gamma, P[i],
+                                                 v, pkr, type, pm, h, beta, gamma, P[i],
                                                  fs, fv, fh, tally);
     for (int d = 0; d < DIM; d++) f[i][d] += fs[d] + fv[d] + fh[d];
     for (int d = 0; d < 3; d++) {
@@ -575,6 +601,9 @@ void PairTLSPH::compute(int eflag, int vflag)
     }
   }
 
+  // tlsph/damage: break bonds, damage, per-particle viscosity (no-op here)
+  update_bonds();
+
   if (dim == 2) {
     if (order == 1) compute_deformation<2, 1>();
     else compute_deformation<2, 2>();
@@ -586,7 +615,7 @@ void PairTLSPH::compute(int eflag, int vflag)
   comm->forward_comm_pair(this);
 
   const int hg = (gamma != 0.0);
-  const int visc = (alpha > 0.0 || beta > 0.0);
+  const int visc = viscosity_active() ? 1 : 0;
   const int vir = vflag_global ? 1 : 0;
   if (dim == 2) {
     if (order == 1) dispatch_forces<2, 1>(hg, visc, vir);
@@ -668,6 +697,7 @@ void PairTLSPH::write_restart(FILE *fp)
     if (has_material) {
       double v[3] = {mat[i].E, mat[i].nu, mat[i].rho};
       fwrite(v, sizeof(double), 3, fp);
+      write_material_extra(fp, i);
     }
   }
 }
@@ -685,6 +715,7 @@ void PairTLSPH::read_restart(FILE *fp)
       double v[3];
       if (me == 0) utils::sfread(FLERR, v, sizeof(double), 3, fp, nullptr, error);
       MPI_Bcast(v, 3, MPI_DOUBLE, 0, world);
+      read_material_extra(fp, i);
       std::vector<std::string> words = {"E", fmt::format("{:.17g}", v[0]), "nu",
                                         fmt::format("{:.17g}", v[1]), "rho",
                                         fmt::format("{:.17g}", v[2])};

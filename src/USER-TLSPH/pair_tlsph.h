@@ -85,6 +85,20 @@ class PairTLSPH : public Pair {
   std::vector<Material> mat;
   std::vector<TLSPH::PairMaterial> pairmat;    // what the force pass reads
   void set_material(int type, const std::vector<std::string> &words, const std::string &where);
+
+  // hooks for derived styles (tlsph/damage): extra material keywords, their
+  // check and restart data, the bond update of every step, and the policy of
+  // the gradient correction after bonds break
+  virtual bool material_key(int, const std::string &, double, const std::string &) { return false; }
+  virtual const char *extra_material_keys() const { return ""; }
+  virtual void check_material(int, const std::string &) {}
+  virtual void write_material_extra(FILE *, int) {}
+  virtual void read_material_extra(FILE *, int) {}
+  virtual void update_bonds() {}
+  virtual bool viscosity_active() const { return alpha > 0.0 || beta > 0.0; }
+  bool correction_from_all_partners = false;    // true: broken bonds stay in the correction
+  double *alpha_atom = nullptr;                  // per-particle viscosity alpha (null: alpha)
+  int correct_particle(int i, BondCache *b, int n, const double *vj);
   void read_material_file(const std::string &file, int narg, char **names);
 
   // per-atom arrays (nmax)

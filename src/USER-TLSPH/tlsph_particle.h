@@ -222,20 +222,25 @@ TLSPH_INLINE double stress_tensors(const IsotropicSVK &law, int dim, double *F, 
 
 /* The per-particle row the force pass reads for every partner (and that
    ghosts receive), blocks back to back, row-major:
-     R = V P Q  (DIM x Basis::size),  F (DIM x DIM),  K = J F^-T (DIM x DIM).
-   2D: 4 + 4 + 4 (linear) or 10 + 4 + 4 (quadratic); 3D: 9 + 9 + 9 or 27 + 9 + 9. */
+     R = V P Q  (DIM x Basis::size),  F (DIM x DIM),  K = J F^-T (DIM x DIM),
+     and the particle's viscosity coefficient alpha_i (tlsph/damage raises it
+     on damaged particles; the pair term uses (alpha_i + alpha_j)/2).
+   2D: 4 + 4 + 4 + 1 (linear) or 10 + 4 + 4 + 1 (quadratic); 3D: 9 + 9 + 9 + 1
+   or 27 + 9 + 9 + 1. */
 template <int DIM, int ORDER> struct Packed {
   static constexpr int NB = Basis<DIM, ORDER>::size;
   static constexpr int R = 0;
   static constexpr int F = DIM * NB;
   static constexpr int K = DIM * NB + DIM * DIM;
-  static constexpr int size = DIM * NB + 2 * DIM * DIM;
+  static constexpr int A = DIM * NB + 2 * DIM * DIM;
+  static constexpr int size = A + 1;
 };
 
 /* Fill particle i's packed row and its own force term V_i P_i s_i. */
 template <int DIM, int ORDER>
 TLSPH_INLINE void pack_row(double Vi, const double *P, const double *Q, const double *F,
-                           const double *K, const double *sumg, double *row, double *fown)
+                           const double *K, double alpha_i, const double *sumg, double *row,
+                           double *fown)
 {
   using L = Packed<DIM, ORDER>;
   constexpr int NB = L::NB;
@@ -250,6 +255,7 @@ TLSPH_INLINE void pack_row(double Vi, const double *P, const double *Q, const do
       row[L::K + DIM * r + c] = K ? K[3 * r + c] : 0.0;
     }
   }
+  row[L::A] = alpha_i;
   for (int r = 0; r < 3; r++) fown[r] = 0.0;
   for (int r = 0; r < DIM; r++)
     for (int c = 0; c < DIM; c++) fown[r] += Vi * P[3 * r + c] * sumg[c];
@@ -277,8 +283,8 @@ struct NoBondVisitor {
 template <int DIM, int ORDER, int HG, int VISC, int VISIT, class Rows, class Types, class Visitor>
 TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const Rows &x,
                                  const Rows &v, const Rows &pk, const Types &type,
-                                 const PairMaterial *mat, double h, double alpha, double beta,
-                                 double gamma, const double *Pi, double *fs, double *fv,
+                                 const PairMaterial *mat, double h, double beta, double gamma,
+                                 const double *Pi, double *fs, double *fv,
                                  double *fh, const Visitor &visit)
 {
   using L = Packed<DIM, ORDER>;
@@ -336,6 +342,7 @@ TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const 
       const double c = 0.5 * (mi.c0 + mj.c0);
       const double rho = 0.5 * (mi.rho + mj.rho);
       const double mu = h * (dvX < 0.0 ? dvX : 0.0) * r2 * inv_both;
+      const double alpha = 0.5 * (pi[L::A] + pj[L::A]);
       const double q = rho * mu * (beta * mu - alpha * c);
       const double sv = -0.5 * q * Vi * bm.wv;
       // (K_i + K_j) X_ij: the K_i part is applied once after the loop

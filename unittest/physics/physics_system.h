@@ -249,7 +249,7 @@ struct System {
         TLSPH::deformation_gradient<DIM>(xr, i, b.data(), static_cast<int>(b.size()), &F[9 * i]);
         psi[i] = TLSPH::stress_tensors(laws[type[i]], DIM, &F[9 * i], &P[9 * i], &K[9 * i], &J[i]);
         TLSPH::pack_row<DIM, ORD>(V[i], &P[9 * i], &Q[TLSPH::QMAX * i], &F[9 * i], &K[9 * i],
-                                  &sumg[3 * i], &packed[static_cast<size_t>(ps) * i],
+                                  0.0, &sumg[3 * i], &packed[static_cast<size_t>(ps) * i],
                                   &fown[3 * i]);
       }
     });
@@ -269,10 +269,13 @@ struct System {
     const TypeOf tr{type.data()};
     with_dim_order(dim, order, [&](auto D, auto O) {
       constexpr int DIM = decltype(D)::value, ORD = decltype(O)::value;
+      // the viscosity coefficient travels in the packed row (per particle)
+      for (int i = 0; i < N; i++)
+        packed[static_cast<size_t>(packed_size()) * i + TLSPH::Packed<DIM, ORD>::A] = alpha;
       for (int i = 0; i < N; i++) {
         const auto &b = bonds[i];
         TLSPH::particle_force<DIM, ORD, HG, VISC, VISIT>(
-            i, V[i], b.data(), static_cast<int>(b.size()), xr, vr, pk, tr, mats.data(), h, alpha,
+            i, V[i], b.data(), static_cast<int>(b.size()), xr, vr, pk, tr, mats.data(), h,
             beta, gamma, &P[9 * i], &fs[3 * i], &fv[3 * i], &fh[3 * i], visit);
       }
     });

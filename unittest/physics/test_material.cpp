@@ -230,7 +230,7 @@ template <int DIM, int ORDER> void check_pack_row(std::mt19937 &rng)
 {
   using L = TLSPH::Packed<DIM, ORDER>;
   constexpr int NB = TLSPH::Basis<DIM, ORDER>::size;
-  static_assert(L::size == DIM * NB + 2 * DIM * DIM, "layout");
+  static_assert(L::size == DIM * NB + 2 * DIM * DIM + 1 && L::A == L::size - 1, "layout");
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   double P[9], Fm[9], K[9], Q[TLSPH::QMAX], sumg[3];
   for (int k = 0; k < 9; k++) P[k] = 1e9 * U(rng), Fm[k] = U(rng), K[k] = U(rng);
@@ -239,7 +239,8 @@ template <int DIM, int ORDER> void check_pack_row(std::mt19937 &rng)
   const double V = 1e-9 * (1.5 + U(rng));
   std::vector<double> row(L::size + 1, -7.0);
   double fown[3];
-  TLSPH::pack_row<DIM, ORDER>(V, P, Q, Fm, K, sumg, row.data(), fown);
+  TLSPH::pack_row<DIM, ORDER>(V, P, Q, Fm, K, 0.7, sumg, row.data(), fown);
+  EXPECT_EQ(row[L::A], 0.7);
   const double Rs = V * 1e9 * 1e3 * DIM;
   for (int r = 0; r < DIM; r++) {
     for (int c = 0; c < NB; c++) {
@@ -257,7 +258,7 @@ template <int DIM, int ORDER> void check_pack_row(std::mt19937 &rng)
   }
   for (int r = DIM; r < 3; r++) EXPECT_EQ(fown[r], 0.0);
   EXPECT_EQ(row[L::size], -7.0);    // nothing written past the row
-  TLSPH::pack_row<DIM, ORDER>(V, P, Q, Fm, nullptr, sumg, row.data(), fown);
+  TLSPH::pack_row<DIM, ORDER>(V, P, Q, Fm, nullptr, 0.7, sumg, row.data(), fown);
   for (int k = 0; k < DIM * DIM; k++) EXPECT_EQ(row[L::K + k], 0.0);
 }
 }    // namespace
@@ -267,10 +268,10 @@ TEST(Material, PackedRowProducts)
   std::mt19937 rng(21);
   // R (DIM x Basis size) + F + K (DIM x DIM each): 4 + 4 + 4 and 10 + 4 + 4
   // in 2D, 9 + 9 + 9 and 27 + 9 + 9 in 3D
-  EXPECT_EQ((TLSPH::Packed<2, 1>::size), 12);
-  EXPECT_EQ((TLSPH::Packed<2, 2>::size), 18);
-  EXPECT_EQ((TLSPH::Packed<3, 1>::size), 27);
-  EXPECT_EQ((TLSPH::Packed<3, 2>::size), 45);
+  EXPECT_EQ((TLSPH::Packed<2, 1>::size), 13);
+  EXPECT_EQ((TLSPH::Packed<2, 2>::size), 19);
+  EXPECT_EQ((TLSPH::Packed<3, 1>::size), 28);
+  EXPECT_EQ((TLSPH::Packed<3, 2>::size), 46);
   for (int n = 0; n < 5; n++) {
     check_pack_row<2, 1>(rng);
     check_pack_row<2, 2>(rng);
