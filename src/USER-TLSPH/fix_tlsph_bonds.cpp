@@ -33,6 +33,7 @@ FixTLSPHBonds::FixTLSPHBonds(LAMMPS *lmp, int narg, char **arg) :
   precounted = 0;
   tallied_step = -1;
   rebuild = 1;
+  fresh = 0;
   cutoff = 0.0;
   nbonds_total = 0;
 
@@ -165,6 +166,7 @@ void FixTLSPHBonds::find_partners()
 {
   if (cutoff <= 0.0) error->all(FLERR, "TLSPH_BONDS: search radius not set by pair tlsph");
   first = 0;
+  fresh = 1;
 
   // the neighbor list is built from current positions: partners within 2h
   // of X are all in it only if no particle has moved too far from x0 yet

@@ -67,6 +67,7 @@ class FixTLSPHBonds : public Fix {
   double *work_visc;    // work dissipated by artificial viscosity, per atom
   double **f_hg;        // hourglass and viscous force of this step, per atom: written
   double **f_visc;      //   by pair tlsph, turned into work in end_of_step()
+  int fresh;           // 1 right after the partner search (pre-cracks are applied then)
   int rebuild;          // 1 after every neighbor build: the pair re-caches bonds
   bigint nbonds_total;  // all bonds (counted twice, once from each end) at setup
 

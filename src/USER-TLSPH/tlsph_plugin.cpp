@@ -17,6 +17,9 @@
 #include "lammps.h"
 #include "modify.h"
 #include "pair_tlsph.h"
+#include "pair_tlsph_damage.h"
+#include "fix_tlsph_velocity_filter.h"
+#include "compute_tlsph_damage_atom.h"
 
 #include <cstring>
 
@@ -52,6 +55,8 @@ struct ComputeEntry {
 
 const PairEntry pair_styles[] = {
     {"tlsph", "Total Lagrangian SPH for elastic solids", &pair_creator<PairTLSPH>},
+    {"tlsph/damage", "Total Lagrangian SPH with critical-stretch bond damage",
+     &pair_creator<PairTLSPHDamage>},
 };
 const FixEntry fix_styles[] = {
     {"TLSPH_BONDS", "internal: reference partners and bond state of pair tlsph",
@@ -59,6 +64,8 @@ const FixEntry fix_styles[] = {
     {"tlsph/dt", "CFL time step for pair tlsph", &fix_creator<FixTLSPHDt>},
     {"tlsph/relax", "kinetic damping (dynamic relaxation) for quasi-static scenes",
      &fix_creator<FixTLSPHRelax>},
+    {"tlsph/velocity/filter", "velocity smoothing in damaged zones (tlsph/damage)",
+     &fix_creator<FixTLSPHVelocityFilter>},
 };
 const ComputeEntry compute_styles[] = {
     {"tlsph/stress/atom", "Cauchy stress of pair tlsph", &compute_creator<ComputeTLSPHTensorAtom>},
@@ -68,6 +75,8 @@ const ComputeEntry compute_styles[] = {
      &compute_creator<ComputeTLSPHTensorAtom>},
     {"tlsph/energy", "strain, hourglass, viscous and kinetic energy of pair tlsph",
      &compute_creator<ComputeTLSPHEnergy>},
+    {"tlsph/damage/atom", "damage and smoothed damage of pair tlsph/damage",
+     &compute_creator<ComputeTLSPHDamageAtom>},
 };
 
 }    // namespace

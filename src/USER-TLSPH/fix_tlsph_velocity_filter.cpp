@@ -1,0 +1,121 @@
+/* ----------------------------------------------------------------------
+   USER-TLSPH: fix tlsph/velocity/filter, see fix_tlsph_velocity_filter.h
+------------------------------------------------------------------------- */
+
+#include "fix_tlsph_velocity_filter.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "pair_tlsph_damage.h"
+#include "update.h"
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+FixTLSPHVelocityFilter::FixTLSPHVelocityFilter(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), pair(nullptr), nmax(0), vnew(nullptr), nfiltered(0)
+{
+  if (narg != 5)
+    error->all(FLERR, "fix tlsph/velocity/filter: expected 'fix ID group tlsph/velocity/filter "
+                      "phi_c eps'");
+  phi_c = utils::numeric(FLERR, arg[3], false, lmp);
+  eps = utils::numeric(FLERR, arg[4], false, lmp);
+  if (phi_c < 0.0 || phi_c > 1.0)
+    error->all(FLERR, "fix tlsph/velocity/filter: phi_c (damage threshold) must be in [0,1], "
+                      "got {}", arg[3]);
+  if (eps <= 0.0 || eps > 1.0)
+    error->all(FLERR, "fix tlsph/velocity/filter: eps (smoothing factor) must be in (0,1], got {}",
+               arg[4]);
+  comm_forward = 3;
+  scalar_flag = 1;
+  global_freq = 1;
+  extscalar = 0;
+}
+
+FixTLSPHVelocityFilter::~FixTLSPHVelocityFilter()
+{
+  memory->destroy(vnew);
+}
+
+int FixTLSPHVelocityFilter::setmask()
+{
+  return END_OF_STEP;
+}
+
+void FixTLSPHVelocityFilter::init()
+{
+  pair = dynamic_cast<PairTLSPHDamage *>(force->pair_match("^tlsph/damage", 0));
+  if (!pair)
+    error->all(FLERR, "fix tlsph/velocity/filter requires pair_style tlsph/damage (it filters "
+                      "by the damage of each particle)");
+}
+
+void FixTLSPHVelocityFilter::end_of_step()
+{
+  // ghosts need the velocities of this step's update
+  comm->forward_comm_fix(this);
+  if (atom->nmax > nmax) {
+    memory->destroy(vnew);
+    nmax = atom->nmax;
+    memory->create(vnew, nmax, 3, "tlsph/velocity/filter:vnew");
+  }
+  double **v = atom->v;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  bigint n = 0;
+  for (int i = 0; i < nlocal; i++) {
+    vnew[i][0] = v[i][0];
+    vnew[i][1] = v[i][1];
+    vnew[i][2] = v[i][2];
+    if (!(mask[i] & groupbit) || !(pair->damage(i) > phi_c)) continue;
+    int nb;
+    const auto *b = pair->intact_bonds(i, nb);
+    double s[3] = {0, 0, 0}, wsum = 0.0;
+    for (int m = 0; m < nb; m++) {
+      const int j = b[m].j;
+      const double W = pair->kernel_value(b[m]);
+      for (int d = 0; d < 3; d++) s[d] += (v[i][d] - v[j][d]) * W;
+      wsum += W;
+    }
+    if (wsum > 0.0)
+      for (int d = 0; d < 3; d++) vnew[i][d] = v[i][d] - eps * s[d] / wsum;
+    n++;
+  }
+  for (int i = 0; i < nlocal; i++)
+    for (int d = 0; d < 3; d++) v[i][d] = vnew[i][d];
+  nfiltered = n;
+}
+
+int FixTLSPHVelocityFilter::pack_forward_comm(int n, int *list, double *buf, int, int *)
+{
+  double **v = atom->v;
+  int m = 0;
+  for (int i = 0; i < n; i++) {
+    buf[m++] = v[list[i]][0];
+    buf[m++] = v[list[i]][1];
+    buf[m++] = v[list[i]][2];
+  }
+  return m;
+}
+
+void FixTLSPHVelocityFilter::unpack_forward_comm(int n, int first, double *buf)
+{
+  double **v = atom->v;
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    v[i][0] = buf[m++];
+    v[i][1] = buf[m++];
+    v[i][2] = buf[m++];
+  }
+}
+
+// number of particles filtered on this rank in the last step (global sum)
+double FixTLSPHVelocityFilter::compute_scalar()
+{
+  double mine = nfiltered, all;
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+  return all;
+}

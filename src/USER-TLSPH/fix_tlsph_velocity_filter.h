@@ -1,0 +1,47 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   USER-TLSPH: fix tlsph/velocity/filter (doc/fix_tlsph_velocity_filter.rst)
+
+   Velocity smoothing in damaged zones (thesis Eq. 2.36): after the
+   velocity update, every particle of the group with damage phi > phi_c gets
+     v_i <- v_i - eps sum_j (v_i - v_j) W_ij / sum_j W_ij
+   over its intact bonds. All particles are filtered from the same old
+   velocities (Jacobi), so the result does not depend on the order or on
+   the MPI decomposition.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(tlsph/velocity/filter,FixTLSPHVelocityFilter)
+// clang-format on
+#else
+
+#ifndef LMP_FIX_TLSPH_VELOCITY_FILTER_H
+#define LMP_FIX_TLSPH_VELOCITY_FILTER_H
+
+#include "fix.h"
+
+namespace LAMMPS_NS {
+
+class FixTLSPHVelocityFilter : public Fix {
+ public:
+  FixTLSPHVelocityFilter(class LAMMPS *, int, char **);
+  ~FixTLSPHVelocityFilter() override;
+  int setmask() override;
+  void init() override;
+  void end_of_step() override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  double compute_scalar() override;
+
+ private:
+  double phi_c, eps;
+  class PairTLSPHDamage *pair;
+  int nmax;
+  double **vnew;
+  bigint nfiltered;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,398 @@
+/* ----------------------------------------------------------------------
+   USER-TLSPH: pair_style tlsph/damage, see pair_tlsph_damage.h and
+   doc/pair_tlsph_damage.rst
+------------------------------------------------------------------------- */
+
+#include "pair_tlsph_damage.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_tlsph_bonds.h"
+#include "memory.h"
+#include "tlsph_pair_terms.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace TLSPH;
+
+PairTLSPHDamage::PairTLSPHDamage(LAMMPS *lmp) : PairTLSPH(lmp)
+{
+  alpha_d = 1.0;
+  absolute = 0;
+  rebuild = 1;
+  nmax_d = 0;
+  phi = phis = alphas = nullptr;
+  comm_stage = 0;
+  nbroken_all = nbroken_local = 0;
+  order = 1;
+}
+
+PairTLSPHDamage::~PairTLSPHDamage()
+{
+  memory->destroy(phi);
+  memory->destroy(phis);
+  memory->destroy(alphas);
+}
+
+/* ----------------------------------------------------------------------
+   pair_style tlsph/damage (keywords of tlsph) [alpha_d A] [criterion tension|absolute]
+     [correction rebuild|setup] [precrack x1 y1 x2 y2 | x1 y1 z1 x2 y2 z2 x3 y3 z3] ...
+------------------------------------------------------------------------- */
+
+void PairTLSPHDamage::settings(int narg, char **arg)
+{
+  std::vector<char *> base;
+  bool have_alpha_d = false, have_gradient = false;
+  double alpha_d_value = 0.0;
+  absolute = 0;
+  rebuild = 1;
+  cracks.clear();
+  const int d = domain->dimension;
+  int iarg = 0;
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if (key == "alpha_d") {
+      if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: alpha_d needs a value");
+      alpha_d_value = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (alpha_d_value < 0.0)
+        error->all(FLERR, "pair_style tlsph/damage: alpha_d must be >= 0, got {}", arg[iarg + 1]);
+      have_alpha_d = true;
+      iarg += 2;
+    } else if (key == "criterion") {
+      if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: criterion needs a value");
+      if (strcmp(arg[iarg + 1], "tension") == 0) absolute = 0;
+      else if (strcmp(arg[iarg + 1], "absolute") == 0) absolute = 1;
+      else
+        error->all(FLERR, "pair_style tlsph/damage: criterion must be 'tension' or 'absolute', "
+                          "got '{}'", arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "correction") {
+      if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: correction needs a value");
+      if (strcmp(arg[iarg + 1], "rebuild") == 0) rebuild = 1;
+      else if (strcmp(arg[iarg + 1], "setup") == 0) rebuild = 0;
+      else
+        error->all(FLERR, "pair_style tlsph/damage: correction must be 'rebuild' or 'setup', "
+                          "got '{}'", arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "precrack") {
+      const int nval = (d == 2) ? 4 : 9;
+      if (iarg + nval >= narg)
+        error->all(FLERR, "pair_style tlsph/damage: precrack needs {} numbers in {}D ({})", nval,
+                   d, d == 2 ? "x1 y1 x2 y2: a segment" : "three corners of a parallelogram");
+      std::array<double, 9> c{};
+      for (int k = 0; k < nval; k++) c[k] = utils::numeric(FLERR, arg[iarg + 1 + k], false, lmp);
+      cracks.push_back(c);
+      iarg += 1 + nval;
+    } else {
+      if (key == "gradient") have_gradient = true;
+      base.push_back(arg[iarg]);
+      if (iarg + 1 < narg) base.push_back(arg[iarg + 1]);
+      iarg += 2;
+    }
+  }
+  PairTLSPH::settings((int) base.size(), base.data());
+  // the thesis's fracture model uses the linear correction: keep it the default
+  if (!have_gradient) order = 1;
+  alpha_d = have_alpha_d ? alpha_d_value : alpha;
+}
+
+/* ---------------------------------------------------------------------- */
+
+bool PairTLSPHDamage::material_key(int type, const std::string &key, double v,
+                                   const std::string &where)
+{
+  if ((int) Gc.size() <= atom->ntypes) {
+    Gc.assign(atom->ntypes + 1, 0.0);
+    sc_given.assign(atom->ntypes + 1, 0.0);
+    sc.assign(atom->ntypes + 1, 0.0);
+  }
+  if (key == "Gc") {
+    if (v <= 0.0) error->all(FLERR, "{}: Gc must be > 0 (fracture energy), got {}", where, v);
+    Gc[type] = v;
+    sc_given[type] = 0.0;
+    return true;
+  }
+  if (key == "sc") {
+    if (v <= 0.0) error->all(FLERR, "{}: sc must be > 0 (critical stretch), got {}", where, v);
+    sc_given[type] = v;
+    Gc[type] = 0.0;
+    return true;
+  }
+  return false;
+}
+
+void PairTLSPHDamage::check_material(int type, const std::string &where)
+{
+  if ((int) Gc.size() <= type || (Gc[type] <= 0.0 && sc_given[type] <= 0.0))
+    error->all(FLERR, "{}: pair tlsph/damage needs a fracture value for every material: Gc "
+                      "(fracture energy) or sc (critical stretch)", where);
+}
+
+void PairTLSPHDamage::write_material_extra(FILE *fp, int type)
+{
+  double v[2] = {Gc[type], sc_given[type]};
+  fwrite(v, sizeof(double), 2, fp);
+}
+
+void PairTLSPHDamage::read_material_extra(FILE *fp, int type)
+{
+  double v[2];
+  if (comm->me == 0) utils::sfread(FLERR, v, sizeof(double), 2, fp, nullptr, error);
+  MPI_Bcast(v, 2, MPI_DOUBLE, 0, world);
+  if ((int) Gc.size() <= atom->ntypes) {
+    Gc.assign(atom->ntypes + 1, 0.0);
+    sc_given.assign(atom->ntypes + 1, 0.0);
+    sc.assign(atom->ntypes + 1, 0.0);
+  }
+  Gc[type] = v[0];
+  sc_given[type] = v[1];
+}
+
+void PairTLSPHDamage::write_restart_settings(FILE *fp)
+{
+  PairTLSPH::write_restart_settings(fp);
+  double v[4] = {alpha_d, (double) absolute, (double) rebuild, (double) cracks.size()};
+  fwrite(v, sizeof(double), 4, fp);
+  for (const auto &c : cracks) fwrite(c.data(), sizeof(double), 9, fp);
+}
+
+void PairTLSPHDamage::read_restart_settings(FILE *fp)
+{
+  PairTLSPH::read_restart_settings(fp);
+  double v[4];
+  if (comm->me == 0) utils::sfread(FLERR, v, sizeof(double), 4, fp, nullptr, error);
+  MPI_Bcast(v, 4, MPI_DOUBLE, 0, world);
+  alpha_d = v[0];
+  absolute = static_cast<int>(v[1]);
+  rebuild = static_cast<int>(v[2]);
+  cracks.assign(static_cast<int>(v[3]), std::array<double, 9>{});
+  for (auto &c : cracks) {
+    if (comm->me == 0) utils::sfread(FLERR, c.data(), sizeof(double), 9, fp, nullptr, error);
+    MPI_Bcast(c.data(), 9, MPI_DOUBLE, 0, world);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairTLSPHDamage::init_style()
+{
+  correction_from_all_partners = !rebuild;
+  PairTLSPH::init_style();
+  // critical stretch per type (thesis Eq. 2.28, horizon = h; K = lambda + 2 mu / 3)
+  for (int t = 1; t <= atom->ntypes; t++) {
+    if (mat[t].rho <= 0.0) continue;
+    if (sc_given[t] > 0.0) sc[t] = sc_given[t];
+    else {
+      const double K = mat[t].lambda + 2.0 * mat[t].mu / 3.0;
+      sc[t] = critical_stretch(Gc[t], mat[t].mu, K, h, dim);
+    }
+    if (comm->me == 0)
+      utils::logmesg(lmp, "pair tlsph/damage: type {} critical stretch s_c = {:.6g}{}\n", t, sc[t],
+                     sc_given[t] > 0.0 ? " (given)" : " (from Gc, horizon h)");
+  }
+  comm_forward = MAX(comm_forward, 1);
+  nmax_d = 0;
+}
+
+void PairTLSPHDamage::grow_damage()
+{
+  nmax_d = atom->nmax;
+  memory->destroy(phi);
+  memory->destroy(phis);
+  memory->destroy(alphas);
+  memory->create(phi, nmax_d, "tlsph/damage:phi");
+  memory->create(phis, nmax_d, "tlsph/damage:phis");
+  memory->create(alphas, nmax_d, "tlsph/damage:alpha");
+  alpha_atom = alphas;
+}
+
+double PairTLSPHDamage::kernel_value(const BondCache &b) const
+{
+  return kernel.value(sqrt(dot3(b.X, b.X)));
+}
+
+/* ----------------------------------------------------------------------
+   pre-cracks: a bond whose reference segment X_i -> X_j crosses a crack
+   segment (2D) or parallelogram (3D) is broken before the first step
+------------------------------------------------------------------------- */
+
+bool PairTLSPHDamage::crosses_crack(const double *A, const double *B) const
+{
+  for (const auto &c : cracks) {
+    if (dim == 2) {
+      const double P[2] = {c[0], c[1]}, R[2] = {c[2], c[3]};
+      auto orient = [](const double *a, const double *b, const double *p) {
+        return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+      };
+      const double o1 = orient(P, R, A), o2 = orient(P, R, B);
+      const double o3 = orient(A, B, P), o4 = orient(A, B, R);
+      if (o1 * o2 < 0.0 && o3 * o4 <= 0.0) return true;
+    } else {
+      const double O[3] = {c[0], c[1], c[2]};
+      const double U[3] = {c[3] - c[0], c[4] - c[1], c[5] - c[2]};
+      const double W[3] = {c[6] - c[0], c[7] - c[1], c[8] - c[2]};
+      const double N[3] = {U[1] * W[2] - U[2] * W[1], U[2] * W[0] - U[0] * W[2],
+                           U[0] * W[1] - U[1] * W[0]};
+      const double dA = (A[0] - O[0]) * N[0] + (A[1] - O[1]) * N[1] + (A[2] - O[2]) * N[2];
+      const double dB = (B[0] - O[0]) * N[0] + (B[1] - O[1]) * N[1] + (B[2] - O[2]) * N[2];
+      if (!(dA * dB < 0.0)) continue;
+      const double t = dA / (dA - dB);
+      double Pp[3];
+      for (int k = 0; k < 3; k++) Pp[k] = A[k] + t * (B[k] - A[k]) - O[k];
+      // coordinates of the crossing point in the (U, W) frame
+      const double uu = dot3(U, U), uw = dot3(U, W), ww = dot3(W, W);
+      const double pu = dot3(Pp, U), pw = dot3(Pp, W);
+      const double det = uu * ww - uw * uw;
+      if (det == 0.0) continue;
+      const double a = (pu * ww - pw * uw) / det, b = (pw * uu - pu * uw) / det;
+      if (a >= 0.0 && a <= 1.0 && b >= 0.0 && b <= 1.0) return true;
+    }
+  }
+  return false;
+}
+
+void PairTLSPHDamage::apply_precracks()
+{
+  if (cracks.empty()) return;
+  double **x0 = atom->x0;
+  const int nlocal = atom->nlocal;
+  bigint nmine = 0;
+  for (int i = 0; i < nlocal; i++) {
+    for (int k = 0; k < bonds->npartner[i]; k++) {
+      if (bonds->state[i][k] != FixTLSPHBonds::INTACT) continue;
+      int j = atom->map(bonds->partner[i][k]);
+      if (j < 0) continue;
+      j = domain->closest_image(i, j);
+      double X[3] = {x0[j][0] - x0[i][0], x0[j][1] - x0[i][1], x0[j][2] - x0[i][2]};
+      domain->minimum_image(X[0], X[1], X[2]);
+      const double B[3] = {x0[i][0] + X[0], x0[i][1] + X[1], x0[i][2] + X[2]};
+      if (crosses_crack(x0[i], B)) {
+        bonds->state[i][k] = FixTLSPHBonds::BROKEN;
+        bonds->nintact0[i]--;
+        nmine++;
+      }
+    }
+  }
+  bigint nall;
+  MPI_Allreduce(&nmine, &nall, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (comm->me == 0)
+    utils::logmesg(lmp, "pair tlsph/damage: {} pre-crack(s) removed {} bonds (counted from both "
+                        "ends)\n", cracks.size(), nall);
+}
+
+// corrected gradients of particle i from its intact bonds (policy 'rebuild')
+void PairTLSPHDamage::recorrect(int i)
+{
+  BondCache *b = &cache[bond_start[i]];
+  const int n = nbond[i];
+  std::vector<double> vj(n);
+  const double Vi = atom->vfrac[i];
+  for (int m = 0; m < n; m++) {
+    vj[m] = atom->vfrac[b[m].j];
+    b[m].c = Vi;    // correction() multiplies it by the weight
+  }
+  correct_particle(i, b, n, vj.data());
+}
+
+/* ----------------------------------------------------------------------
+   every step, before F: break bonds, update damage and the viscosity
+------------------------------------------------------------------------- */
+
+void PairTLSPHDamage::update_bonds()
+{
+  if (atom->nmax > nmax_d) grow_damage();
+  if (bonds->fresh) {
+    bonds->fresh = 0;
+    apply_precracks();
+    build_bond_cache();
+  }
+
+  double **x = atom->x;
+  int *type = atom->type;
+  const int nlocal = atom->nlocal;
+
+  // (1) stretch criterion: both ends compute the same stretch from the same
+  // positions (ghosts are current at this point), so both drop the bond
+  for (int i = 0; i < nlocal; i++) {
+    BondCache *b = &cache[bond_start[i]];
+    int n = nbond[i];
+    bool changed = false;
+    for (int m = 0; m < n;) {
+      const int j = b[m].j;
+      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+      const double r = sqrt(dx * dx + dy * dy + (dim == 3 ? dz * dz : 0.0));
+      const double r0 = sqrt(dot3(b[m].X, b[m].X));
+      double s = (r - r0) / r0;
+      if (absolute) s = fabs(s);
+      const double s_c = MIN(sc[type[i]], sc[type[j]]);
+      if (s >= s_c) {
+        bonds->state[i][b[m].k] = FixTLSPHBonds::BROKEN;
+        nbroken_local++;
+        // move the bond behind the intact ones (it stays in the segment: the
+        // 'setup' policy keeps it in the correction, and it still smooths phi)
+        if (!rebuild)
+          for (int d = 0; d < 3; d++) sumg[i][d] -= b[m].g[d];
+        BondCache tmp = b[m];
+        b[m] = b[n - 1];
+        b[n - 1] = tmp;
+        n--;
+        changed = true;
+      } else
+        m++;
+    }
+    if (changed) {
+      nbond[i] = n;
+      if (rebuild) recorrect(i);
+    }
+  }
+
+  // (2) damage phi = 1 - intact/initial (thesis Eq. 2.33), then its smoothed
+  // form phi' (Eq. 2.34) over the reference partners in the cache
+  for (int i = 0; i < nlocal; i++) {
+    const int n0 = bonds->nintact0[i];
+    phi[i] = (n0 > 0) ? 1.0 - (double) nbond[i] / n0 : 0.0;
+    if (phi[i] < 0.0) phi[i] = 0.0;
+  }
+  comm_stage = 1;
+  comm->forward_comm_pair(this);
+  comm_stage = 0;
+  for (int i = 0; i < nlocal; i++) {
+    const BondCache *b = &cache[bond_start[i]];
+    const int nseg = bond_start[i + 1] - bond_start[i];
+    double num = 0.0, den = 0.0;
+    for (int m = 0; m < nseg; m++) {
+      const double W = kernel_value(b[m]);
+      num += (phi[i] - phi[b[m].j]) * W;
+      den += W;
+    }
+    phis[i] = (den > 0.0) ? phi[i] - num / den : phi[i];
+    // adaptive viscosity (thesis Eq. 2.35)
+    alphas[i] = (phis[i] > 0.0) ? alpha_d : alpha;
+  }
+}
+
+int PairTLSPHDamage::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
+{
+  if (comm_stage == 0) return PairTLSPH::pack_forward_comm(n, list, buf, pbc_flag, pbc);
+  for (int i = 0; i < n; i++) buf[i] = phi[list[i]];
+  return n;
+}
+
+void PairTLSPHDamage::unpack_forward_comm(int n, int first, double *buf)
+{
+  if (comm_stage == 0) {
+    PairTLSPH::unpack_forward_comm(n, first, buf);
+    return;
+  }
+  for (int i = 0; i < n; i++) phi[first + i] = buf[i];
+}
+
+double PairTLSPHDamage::memory_usage()
+{
+  return PairTLSPH::memory_usage() + 3.0 * nmax_d * sizeof(double);
+}

@@ -1,0 +1,84 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   USER-TLSPH: pair_style tlsph/damage (doc/pair_tlsph_damage.rst)
+
+   pair tlsph plus bonds that break irreversibly at a critical stretch
+   (from the fracture energy G_c, or given), the damage field phi and its
+   smoothed form phi', and the adaptive artificial viscosity (alpha_d on
+   damaged particles). The bond update runs at the start of every force
+   call, on positions both ends of a bond see identically, so every MPI
+   decomposition breaks the same bonds.
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(tlsph/damage,PairTLSPHDamage)
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_TLSPH_DAMAGE_H
+#define LMP_PAIR_TLSPH_DAMAGE_H
+
+#include "pair_tlsph.h"
+
+#include <array>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class PairTLSPHDamage : public PairTLSPH {
+ public:
+  PairTLSPHDamage(class LAMMPS *);
+  ~PairTLSPHDamage() override;
+  void settings(int, char **) override;
+  void init_style() override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  double memory_usage() override;
+
+  // read by compute tlsph/damage/atom and fix tlsph/velocity/filter
+  double damage(int i) const { return phi[i]; }
+  double smoothed_damage(int i) const { return phis[i]; }
+  // the intact bonds of local particle i (valid after a force call)
+  const BondCache *intact_bonds(int i, int &n) const
+  {
+    n = nbond[i];
+    return &cache[bond_start[i]];
+  }
+  double kernel_value(const BondCache &b) const;
+  double critical_stretch_of(int type) const { return sc[type]; }
+  bigint broken_total() const { return nbroken_all; }
+
+ protected:
+  bool material_key(int, const std::string &, double, const std::string &) override;
+  const char *extra_material_keys() const override { return ", and one of Gc, sc"; }
+  void check_material(int, const std::string &) override;
+  void write_material_extra(FILE *, int) override;
+  void read_material_extra(FILE *, int) override;
+  void update_bonds() override;
+  bool viscosity_active() const override { return alpha > 0.0 || beta > 0.0 || alpha_d > 0.0; }
+
+ private:
+  double alpha_d;          // viscosity alpha on damaged particles (phi' > 0)
+  int absolute;            // 1: |stretch| >= s_c breaks (thesis Eq. 2.27), 0: tension only
+  int rebuild;             // 1: correction rebuilt from intact bonds, 0: kept from setup
+  std::vector<double> Gc, sc_given, sc;    // per type: fracture energy, given s_c, s_c used
+  std::vector<std::array<double, 9>> cracks;    // pre-cracks: 2D segments, 3D parallelograms
+
+  int nmax_d;
+  double *phi, *phis, *alphas;
+  int comm_stage;          // 0: packed rows (base), 1: damage phi
+  bigint nbroken_all;      // bonds broken so far (counted from both ends)
+  bigint nbroken_local;
+
+  void grow_damage();
+  void apply_precracks();
+  bool crosses_crack(const double *A, const double *B) const;
+  void recorrect(int i);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
