@@ -25,7 +25,9 @@ namespace LAMMPS_NS {
 
 class FixTLSPHBonds : public Fix {
  public:
-  enum { BROKEN = 0, INTACT = 1 };
+  // PRECRACKED: removed by a pre-crack before the first step (never part of
+  // the material: also left out of the 'setup' gradient correction)
+  enum { BROKEN = 0, INTACT = 1, PRECRACKED = 2 };
 
   FixTLSPHBonds(class LAMMPS *, int, char **);
   ~FixTLSPHBonds() override;

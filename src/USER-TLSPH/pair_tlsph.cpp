@@ -215,7 +215,9 @@ void PairTLSPH::coeff(int narg, char **arg)
   const int ntypes = atom->ntypes;
 
   const std::string first = arg[2];
-  const bool inline_form = (first == "E" || first == "nu" || first == "rho");
+  double dummy;
+  const bool inline_form = (first == "E" || first == "nu" || first == "rho" ||
+                            is_extra_material_key(first, dummy));
   if (!inline_form) {
     if (strcmp(arg[0], "*") != 0 || strcmp(arg[1], "*") != 0)
       error->all(FLERR, "pair_coeff tlsph: the file form must be 'pair_coeff * * {} name1 ... "
@@ -433,7 +435,8 @@ void PairTLSPH::build_bond_cache()
     for (int pass = 0; pass < 2; pass++) {
       if (pass == 1 && !correction_from_all_partners) break;
       for (int k = 0; k < np; k++) {
-        if ((state[k] == FixTLSPHBonds::INTACT) != (pass == 0)) continue;
+        if (pass == 0 && state[k] != FixTLSPHBonds::INTACT) continue;
+        if (pass == 1 && state[k] != FixTLSPHBonds::BROKEN) continue;
         int j = atom->map(partner[k]);
         if (j < 0) {
           if (pass == 1) continue;    // a broken partner may have left the ghost shell

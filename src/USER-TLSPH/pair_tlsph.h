@@ -89,8 +89,14 @@ class PairTLSPH : public Pair {
   // hooks for derived styles (tlsph/damage): extra material keywords, their
   // check and restart data, the bond update of every step, and the policy of
   // the gradient correction after bonds break
-  virtual bool material_key(int, const std::string &, double, const std::string &) { return false; }
+  // the fracture values of a material (Gc, sc) are read by tlsph/damage and
+  // ignored here, so that one material file serves both styles
+  virtual bool material_key(int, const std::string &key, double, const std::string &)
+  {
+    return key == "Gc" || key == "sc";
+  }
   virtual const char *extra_material_keys() const { return ""; }
+  virtual bool is_extra_material_key(const std::string &, double &) const { return false; }
   virtual void check_material(int, const std::string &) {}
   virtual void write_material_extra(FILE *, int) {}
   virtual void read_material_extra(FILE *, int) {}

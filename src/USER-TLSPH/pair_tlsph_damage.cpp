@@ -28,7 +28,7 @@ PairTLSPHDamage::PairTLSPHDamage(LAMMPS *lmp) : PairTLSPH(lmp)
   nmax_d = 0;
   phi = phis = alphas = nullptr;
   comm_stage = 0;
-  nbroken_all = nbroken_local = 0;
+  nbroken_local = 0;
   order = 1;
 }
 
@@ -81,7 +81,11 @@ void PairTLSPHDamage::settings(int narg, char **arg)
       iarg += 2;
     } else if (key == "precrack") {
       const int nval = (d == 2) ? 4 : 9;
-      if (iarg + nval >= narg)
+      // too few numbers, also when another keyword follows (it would
+      // otherwise be read as a coordinate, with a message not naming precrack)
+      bool enough = (iarg + nval < narg);
+      for (int k = 1; enough && k <= nval; k++) enough = utils::is_double(arg[iarg + k]);
+      if (!enough)
         error->all(FLERR, "pair_style tlsph/damage: precrack needs {} numbers in {}D ({})", nval,
                    d, d == 2 ? "x1 y1 x2 y2: a segment" : "three corners of a parallelogram");
       std::array<double, 9> c{};
@@ -272,7 +276,7 @@ void PairTLSPHDamage::apply_precracks()
       domain->minimum_image(X[0], X[1], X[2]);
       const double B[3] = {x0[i][0] + X[0], x0[i][1] + X[1], x0[i][2] + X[2]};
       if (crosses_crack(x0[i], B)) {
-        bonds->state[i][k] = FixTLSPHBonds::BROKEN;
+        bonds->state[i][k] = FixTLSPHBonds::PRECRACKED;
         bonds->nintact0[i]--;
         nmine++;
       }
@@ -334,7 +338,7 @@ void PairTLSPHDamage::update_bonds()
         bonds->state[i][b[m].k] = FixTLSPHBonds::BROKEN;
         nbroken_local++;
         // move the bond behind the intact ones (it stays in the segment: the
-        // 'setup' policy keeps it in the correction, and it still smooths phi)
+        // 'setup' policy keeps it in the correction)
         if (!rebuild)
           for (int d = 0; d < 3; d++) sumg[i][d] -= b[m].g[d];
         BondCache tmp = b[m];
@@ -352,7 +356,13 @@ void PairTLSPHDamage::update_bonds()
   }
 
   // (2) damage phi = 1 - intact/initial (thesis Eq. 2.33), then its smoothed
-  // form phi' (Eq. 2.34) over the reference partners in the cache
+  // form phi' (Eq. 2.34) over the intact bonds: a broken partner "no longer
+  // contributes to the kernel interpolation of any field variable on i"
+  // (thesis 2.3.1.1). Not over the cached segment: which broken bonds it
+  // holds depends on the policy, on when the cache was last rebuilt (at
+  // every reneighboring, 'rebuild' drops them) and, for 'setup', on whether
+  // the broken partner is still a ghost -- phi', alpha_i and the trajectory
+  // would change with the neighbor skin, a run split or a restart.
   for (int i = 0; i < nlocal; i++) {
     const int n0 = bonds->nintact0[i];
     phi[i] = (n0 > 0) ? 1.0 - (double) nbond[i] / n0 : 0.0;
@@ -363,14 +373,17 @@ void PairTLSPHDamage::update_bonds()
   comm_stage = 0;
   for (int i = 0; i < nlocal; i++) {
     const BondCache *b = &cache[bond_start[i]];
-    const int nseg = bond_start[i + 1] - bond_start[i];
+    const int n = nbond[i];
     double num = 0.0, den = 0.0;
-    for (int m = 0; m < nseg; m++) {
+    for (int m = 0; m < n; m++) {
       const double W = kernel_value(b[m]);
-      num += (phi[i] - phi[b[m].j]) * W;
+      num += phi[b[m].j] * W;
       den += W;
     }
-    phis[i] = (den > 0.0) ? phi[i] - num / den : phi[i];
+    // phi_i - sum_j (phi_i - phi_j) W_ij / sum_j W_ij, written as the W-weighted
+    // mean of the partners' damage: the difference form leaves +-1e-17 where
+    // it should be 0, and that would switch alpha_d on spuriously
+    phis[i] = (den > 0.0) ? num / den : phi[i];
     // adaptive viscosity (thesis Eq. 2.35)
     alphas[i] = (phis[i] > 0.0) ? alpha_d : alpha;
   }

@@ -48,11 +48,14 @@ class PairTLSPHDamage : public PairTLSPH {
   }
   double kernel_value(const BondCache &b) const;
   double critical_stretch_of(int type) const { return sc[type]; }
-  bigint broken_total() const { return nbroken_all; }
 
  protected:
   bool material_key(int, const std::string &, double, const std::string &) override;
   const char *extra_material_keys() const override { return ", and one of Gc, sc"; }
+  bool is_extra_material_key(const std::string &key, double &) const override
+  {
+    return key == "Gc" || key == "sc";
+  }
   void check_material(int, const std::string &) override;
   void write_material_extra(FILE *, int) override;
   void read_material_extra(FILE *, int) override;
@@ -69,8 +72,7 @@ class PairTLSPHDamage : public PairTLSPH {
   int nmax_d;
   double *phi, *phis, *alphas;
   int comm_stage;          // 0: packed rows (base), 1: damage phi
-  bigint nbroken_all;      // bonds broken so far (counted from both ends)
-  bigint nbroken_local;
+  bigint nbroken_local;    // bonds broken on this rank so far (from this end)
 
   void grow_damage();
   void apply_precracks();
