@@ -1,0 +1,171 @@
+#!/usr/bin/env python3
+"""Determinism of the bond damage of pair tlsph/damage (ctest damage.determinism).
+
+Runs in.branch (a shortened crack-branching plate with the velocity filter)
+with lmp_tlsph for N steps under mpirun -np 1, 2 and 4, and once as N/2 steps
+on 2 ranks + write_restart, then read_restart + N/2 steps on 4 ranks
+(in.restart: the fixes are issued again, the pair style, its coefficients
+and the broken bonds come from the restart file). From the final state,
+dumped sorted by atom ID, it checks:
+  - every run finished (exit 0, no ERROR, no NaN), LAMMPS reneighbored and,
+    for np > 1, atoms changed their owning rank (migration was exercised);
+  - bonds broke during the run (not only the pre-crack): else the test
+    would be vacuous;
+  - every atom has the same damage phi and the same number of intact bonds
+    in every run: the same bonds broke, whatever the decomposition, and the
+    restart kept the broken bonds.
+Positions and velocities may differ by round-off (the ranks sum the same
+terms in another order; a restart starts with a setup force evaluation);
+their largest differences are printed for information.
+Pure Python (no numpy).
+"""
+import argparse
+import math
+import os
+import re
+import subprocess
+import sys
+
+
+def read_dump(path):
+    """Return (columns, {id: [values...]}) of a LAMMPS text dump (one snapshot)."""
+    with open(path) as fp:
+        lines = fp.read().splitlines()
+    k = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))
+    cols = lines[k].split()[2:]
+    rows = {}
+    for l in lines[k + 1:]:
+        w = l.split()
+        if w:
+            rows[int(w[0])] = w[1:]
+    return cols[1:], rows
+
+
+def mpi_cmd(args, np):
+    cmd = [args.mpiexec]
+    version = subprocess.run([args.mpiexec, "--version"], capture_output=True, text=True)
+    if re.search(r"Open MPI|OpenRTE|open-mpi\.org", version.stdout + version.stderr):
+        cmd += ["--oversubscribe"]
+        if hasattr(os, "geteuid") and os.geteuid() == 0:
+            cmd += ["--allow-run-as-root"]
+    return cmd + ["-np", str(np), args.lmp]
+
+
+def lammps(args, np, tag, inp, extra):
+    cmd = mpi_cmd(args, np) + ["-in", os.path.join(args.srcdir, inp), "-log", "none",
+                               "-var", "srcdir", args.srcdir, "-var", "out", tag] + extra
+    p = subprocess.run(cmd, cwd=args.workdir, capture_output=True, text=True,
+                       timeout=args.timeout)
+    out = p.stdout + p.stderr
+    with open(os.path.join(args.workdir, tag + ".out"), "w") as fp:
+        fp.write(out)
+    problems = []
+    if p.returncode != 0:
+        problems.append("exit code %d" % p.returncode)
+    if "ERROR" in out:
+        problems.append("ERROR in output: " + next(l for l in out.splitlines() if "ERROR" in l))
+    if re.search(r"\bnan\b|\bNaN\b|-nan|\binf\b", out):
+        problems.append("NaN or inf in output")
+    m = re.search(r"Neighbor list builds = (\d+)", out)
+    builds = int(m.group(1)) if m else 0
+    grid = re.search(r"(\d+ by \d+ by \d+) MPI processor grid", out)
+    print("%-14s np %d, exit %d, processor grid %s, neighbor list builds %d"
+          % (tag, np, p.returncode, grid.group(1) if grid else "?", builds))
+    if problems:
+        print("\n".join(out.splitlines()[-30:]))
+    elif builds == 0:
+        problems.append("no reneighboring happened")
+    return problems
+
+
+def final_state(args, tag, np):
+    """(cols, final rows) and the migration check of one finished run."""
+    _, start = read_dump(os.path.join(args.workdir, tag + ".0.dump"))
+    cols, final = read_dump(os.path.join(args.workdir, tag + ".final.dump"))
+    moved = sum(1 for i in final if final[i][0] != start[i][0])
+    print("%-14s %d atoms, %d of them changed their rank during the (last) run"
+          % (tag, len(final), moved))
+    problems = []
+    if np > 1 and moved == 0:
+        problems.append("no atom migrated between ranks: the test does not exercise migration")
+    return cols, final, problems
+
+
+def compare(ref_tag, ref, tag, other):
+    cols, a = ref
+    _, b = other
+    if sorted(a) != sorted(b):
+        return ["different atom IDs"]
+    iphi, iint = cols.index("c_dmg[1]"), cols.index("c_dmg[3]")
+    diff = [i for i in sorted(a) if a[i][iphi] != b[i][iphi] or a[i][iint] != b[i][iint]]
+    dx = max(abs(float(a[i][cols.index(k)]) - float(b[i][cols.index(k)]))
+             for i in a for k in ("xu", "yu"))
+    dv = max(abs(float(a[i][cols.index(k)]) - float(b[i][cols.index(k)]))
+             for i in a for k in ("vx", "vy"))
+    print("%s against %s: %d atoms with a different (phi, intact bonds); max |dx| %.3g m, "
+          "max |dv| %.3g m/s" % (tag, ref_tag, len(diff), dx, dv))
+    for i in diff[:10]:
+        print("    atom %d: phi %s / %s, intact %s / %s"
+              % (i, a[i][iphi], b[i][iphi], a[i][iint], b[i][iint]))
+    return ["%s: %d atoms differ in damage from %s" % (tag, len(diff), ref_tag)] if diff else []
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--mpiexec", default="mpirun")
+    ap.add_argument("--lmp", required=True, help="the lmp_tlsph launcher")
+    ap.add_argument("--srcdir", required=True, help="folder of in.branch, in.common, in.restart")
+    ap.add_argument("--workdir", required=True)
+    ap.add_argument("--steps", type=int, default=500)
+    ap.add_argument("--np", type=int, nargs="+", default=[1, 2, 4])
+    ap.add_argument("--timeout", type=float, default=120)
+    args = ap.parse_args()
+    args.srcdir = os.path.abspath(args.srcdir)
+    args.lmp = os.path.abspath(args.lmp)
+    os.makedirs(args.workdir, exist_ok=True)
+    n, half = args.steps, args.steps // 2
+    if 2 * half != n:
+        ap.error("--steps must be even")
+
+    problems, results = [], []
+    for np in args.np:
+        tag = "np%d" % np
+        prob = lammps(args, np, tag, "in.branch", ["-var", "steps", str(n)])
+        if not prob:
+            cols, final, prob = final_state(args, tag, np)
+            results.append((tag, (cols, final)))
+        problems += ["%s: %s" % (tag, p) for p in prob]
+
+    # N/2 on 2 ranks, restart file, N/2 more on 4 ranks
+    rfile = "first_half.restart"
+    prob = lammps(args, 2, "first_half", "in.branch",
+                  ["-var", "steps", str(half), "-var", "restart", "1"])
+    if not prob:
+        prob = lammps(args, 4, "restarted", "in.restart",
+                      ["-var", "steps", str(half), "-var", "file", rfile])
+        if not prob:
+            cols, final, prob = final_state(args, "restarted", 4)
+            results.append(("restarted", (cols, final)))
+    problems += ["restart: %s" % p for p in prob]
+
+    if results:
+        ref_tag, ref = results[0]
+        cols, a = ref
+        iint, iini = cols.index("c_dmg[3]"), cols.index("c_dmg[4]")
+        broken = sum(float(a[i][iini]) - float(a[i][iint]) for i in a)
+        damaged = sum(1 for i in a if float(a[i][iini]) > float(a[i][iint]))
+        print("%s: %d bond ends broke during the run, %d atoms damaged" % (ref_tag, broken, damaged))
+        if broken < 100:
+            problems.append("only %d bond ends broke during the run: the test is vacuous" % broken)
+        for tag, res in results[1:]:
+            problems += compare(ref_tag, ref, tag, res)
+    if problems:
+        print("FAILED:\n  " + "\n  ".join(problems))
+        return 1
+    print("PASSED: the same bonds broke in all runs (np %s, and restarted)"
+          % " ".join(str(x) for x in args.np))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
