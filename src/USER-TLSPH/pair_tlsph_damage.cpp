@@ -276,8 +276,10 @@ void PairTLSPHDamage::apply_precracks()
       domain->minimum_image(X[0], X[1], X[2]);
       const double B[3] = {x0[i][0] + X[0], x0[i][1] + X[1], x0[i][2] + X[2]};
       if (crosses_crack(x0[i], B)) {
+        // still counted in the initial bonds (thesis Algorithm 1, line 4, sets
+        // lambda = 0 before the damage is defined): particles along a
+        // pre-crack start damaged, so alpha_d and the filter act there
         bonds->state[i][k] = FixTLSPHBonds::PRECRACKED;
-        bonds->nintact0[i]--;
         nmine++;
       }
     }

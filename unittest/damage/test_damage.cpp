@@ -776,17 +776,17 @@ set type 1 mass 7.8e-6
   EXPECT_EQ(wrong, 0);
   EXPECT_GT(nexpect, 10) << "the crack crosses too few bonds for a meaningful test";
 
-  // the damage columns: intact = partners - crossing; phi = 0 and phi' = 0
-  // on every particle none of whose bonds (nor its partners' bonds) cross
+  // the damage columns: intact = partners - crossing, initial = partners
+  // (pre-cracked bonds count as broken, thesis Algorithm 1 line 4), so
+  // phi = crossing/partners; phi = 0 on every particle none of whose bonds cross
   const Columns cols = damage_columns(lmp);
   int far = 0, near = 0;
   for (const auto &kv : cols) {
     const long id = kv.first;
     const int np = partners[id], nx = crossing.count(id) ? crossing[id] : 0;
     EXPECT_EQ(kv.second[2], np - nx) << "atom " << id << " intact bonds";
-    // the pre-cracked bonds are not counted in the initial bonds, so a
-    // pre-crack alone leaves phi = 0 (see the report of this test folder)
-    EXPECT_EQ(kv.second[3], np - nx) << "atom " << id << " initial bonds";
+    EXPECT_EQ(kv.second[3], np) << "atom " << id << " initial bonds";
+    EXPECT_NEAR(kv.second[0], (double) nx / np, 1e-15) << "atom " << id << " phi";
     if (nx == 0) {
       far++;
       EXPECT_EQ(kv.second[0], 0.0) << "atom " << id << " phi away from the crack";
