@@ -480,6 +480,15 @@ struct TypeOf {
   const int *t;
   int operator()(int j) const { return t[j]; }
 };
+struct ScatterForce {
+  double **f;
+  void operator()(int j, const double *t) const
+  {
+    f[j][0] -= t[0];
+    f[j][1] -= t[1];
+    f[j][2] -= t[2];
+  }
+};
 struct VirialTally {
   double *virial;
   void operator()(int, const double *xij, const double *f) const
@@ -539,7 +548,8 @@ template <int DIM, int ORDER> void PairTLSPH::compute_deformation()
    pass (3): stress, viscous and hourglass forces (tlsph_particle.h)
 ------------------------------------------------------------------------- */
 
-template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void PairTLSPH::compute_forces()
+template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, int SCATTER>
+void PairTLSPH::compute_forces()
 {
   const Rows x{atom->x}, v{atom->v}, pkr{pk};
   const TypeOf type{atom->type};
@@ -551,13 +561,14 @@ template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void PairTLSPH::comp
   double **f_hg = bonds->f_hg;
   double **f_visc = bonds->f_visc;
   const VirialTally tally{virial};
+  const ScatterForce scatter{f};
   const PairMaterial *pm = pairmat.data();
 
   for (int i = 0; i < nlocal; i++) {
     double fs[3] = {fown[i][0], fown[i][1], fown[i][2]}, fv[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
-    particle_force<DIM, ORDER, HG, VISC, VIRIAL>(i, vfrac[i], &cache[bond_start[i]], nbond[i], x,
-                                                 v, pkr, type, pm, h, beta, gamma, P[i],
-                                                 fs, fv, fh, tally);
+    particle_force<DIM, ORDER, HG, VISC, VIRIAL, SCATTER>(
+        i, vfrac[i], &cache[bond_start[i]], nbond[i], x, v, pkr, type, pm, h, beta, gamma, P[i],
+        fs, fv, fh, tally, scatter);
     for (int d = 0; d < DIM; d++) f[i][d] += fs[d] + fv[d] + fh[d];
     for (int d = 0; d < 3; d++) {
       f_hg[i][d] = fh[d];
@@ -566,19 +577,30 @@ template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void PairTLSPH::comp
   }
 }
 
-template <int DIM, int ORDER> void PairTLSPH::dispatch_forces(int hg, int visc, int vir)
+template <int DIM, int ORDER>
+void PairTLSPH::dispatch_forces(int hg, int visc, int vir, int newton)
 {
-  const int key = hg + 2 * visc + 4 * vir;
+  // newton_pair on: the stress term is scattered to the partners and LAMMPS
+  // sums the ghost forces; off: every particle gathers its whole force
+  const int key = hg + 2 * visc + 4 * vir + 8 * newton;
   switch (key) {
     // clang-format off
-    case 0: compute_forces<DIM, ORDER, 0, 0, 0>(); break;
-    case 1: compute_forces<DIM, ORDER, 1, 0, 0>(); break;
-    case 2: compute_forces<DIM, ORDER, 0, 1, 0>(); break;
-    case 3: compute_forces<DIM, ORDER, 1, 1, 0>(); break;
-    case 4: compute_forces<DIM, ORDER, 0, 0, 1>(); break;
-    case 5: compute_forces<DIM, ORDER, 1, 0, 1>(); break;
-    case 6: compute_forces<DIM, ORDER, 0, 1, 1>(); break;
-    case 7: compute_forces<DIM, ORDER, 1, 1, 1>(); break;
+    case 0:  compute_forces<DIM, ORDER, 0, 0, 0, 0>(); break;
+    case 1:  compute_forces<DIM, ORDER, 1, 0, 0, 0>(); break;
+    case 2:  compute_forces<DIM, ORDER, 0, 1, 0, 0>(); break;
+    case 3:  compute_forces<DIM, ORDER, 1, 1, 0, 0>(); break;
+    case 4:  compute_forces<DIM, ORDER, 0, 0, 1, 0>(); break;
+    case 5:  compute_forces<DIM, ORDER, 1, 0, 1, 0>(); break;
+    case 6:  compute_forces<DIM, ORDER, 0, 1, 1, 0>(); break;
+    case 7:  compute_forces<DIM, ORDER, 1, 1, 1, 0>(); break;
+    case 8:  compute_forces<DIM, ORDER, 0, 0, 0, 1>(); break;
+    case 9:  compute_forces<DIM, ORDER, 1, 0, 0, 1>(); break;
+    case 10: compute_forces<DIM, ORDER, 0, 1, 0, 1>(); break;
+    case 11: compute_forces<DIM, ORDER, 1, 1, 0, 1>(); break;
+    case 12: compute_forces<DIM, ORDER, 0, 0, 1, 1>(); break;
+    case 13: compute_forces<DIM, ORDER, 1, 0, 1, 1>(); break;
+    case 14: compute_forces<DIM, ORDER, 0, 1, 1, 1>(); break;
+    case 15: compute_forces<DIM, ORDER, 1, 1, 1, 1>(); break;
       // clang-format on
   }
 }
@@ -620,12 +642,13 @@ void PairTLSPH::compute(int eflag, int vflag)
   const int hg = (gamma != 0.0);
   const int visc = viscosity_active() ? 1 : 0;
   const int vir = vflag_global ? 1 : 0;
+  const int nt = force->newton_pair ? 1 : 0;
   if (dim == 2) {
-    if (order == 1) dispatch_forces<2, 1>(hg, visc, vir);
-    else dispatch_forces<2, 2>(hg, visc, vir);
+    if (order == 1) dispatch_forces<2, 1>(hg, visc, vir, nt);
+    else dispatch_forces<2, 2>(hg, visc, vir, nt);
   } else {
-    if (order == 1) dispatch_forces<3, 1>(hg, visc, vir);
-    else dispatch_forces<3, 2>(hg, visc, vir);
+    if (order == 1) dispatch_forces<3, 1>(hg, visc, vir, nt);
+    else dispatch_forces<3, 2>(hg, visc, vir, nt);
   }
 
   if (eflag_either) {

@@ -131,8 +131,8 @@ class PairTLSPH : public Pair {
   void build_bond_cache();
 
   template <int DIM, int ORDER> void compute_deformation();
-  template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void compute_forces();
-  template <int DIM, int ORDER> void dispatch_forces(int hg, int visc, int vir);
+  template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, int SCATTER> void compute_forces();
+  template <int DIM, int ORDER> void dispatch_forces(int hg, int visc, int vir, int newton);
 
   void allocate();
 };

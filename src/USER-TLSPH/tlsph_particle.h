@@ -270,6 +270,10 @@ struct NoBondVisitor {
   TLSPH_INLINE void operator()(int, const double *, const double *) const {}
 };
 
+struct NoScatter {
+  TLSPH_INLINE void operator()(int, const double *) const {}
+};
+
 /* Force on particle i from its bonds, added to fs (stress), fv (viscous)
    and fh (hourglass); fown = V_i P_i s_i must be added to fs separately.
      stress:   - sum_j V_j P_j g_ji  =  - sum_j R_j c_ij p(-X_ij/h)
@@ -278,14 +282,23 @@ struct NoBondVisitor {
      hourglass: Ganzenmueller's pair force along x_ij (tlsph_pair_terms.h)
    Accessors x, v return position/velocity rows, pk the packed rows, type(j)
    the particle type; mat[type] the material numbers. When VISIT is set,
-   visit(j, xij, fij) receives the total bond force on i (virial tallies);
-   Pi (the own stress) is then needed, otherwise it may be null. */
-template <int DIM, int ORDER, int HG, int VISC, int VISIT, class Rows, class Types, class Visitor>
+   visit(j, xij, fij) receives twice the pair force of the bond that the
+   tally halves (virial tallies).
+   SCATTER (Newton's third law for the stress term): instead of gathering
+   - V_j P_j g_ji = - c_ij R_j p(-X_ij/h) from every partner, particle i hands
+   its own bond force t_ij = V_i P_i g_ij to the partner, scatter(j, t) doing
+   f_j -= t (ghost forces are then summed by LAMMPS's reverse communication):
+   DIM^2 instead of DIM x Basis::size multiply-adds per bond, the same sum.
+   Pi (the own stress) is needed with VISIT or SCATTER, otherwise it may be
+   null. */
+template <int DIM, int ORDER, int HG, int VISC, int VISIT, int SCATTER = 0, class Rows,
+          class Types, class Visitor, class Scatter = NoScatter>
 TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const Rows &x,
                                  const Rows &v, const Rows &pk, const Types &type,
                                  const PairMaterial *mat, double h, double beta, double gamma,
                                  const double *Pi, double *fs, double *fv,
-                                 double *fh, const Visitor &visit)
+                                 double *fh, const Visitor &visit,
+                                 const Scatter &scatter = Scatter())
 {
   using L = Packed<DIM, ORDER>;
   constexpr int NB = L::NB;
@@ -308,16 +321,28 @@ TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const 
     const int j = bm.j;
     const double *pj = pk(j);
     double fb[3] = {0.0, 0.0, 0.0};
-    double s[3] = {-bm.X[0] * inv_h, -bm.X[1] * inv_h, -bm.X[2] * inv_h}, p[NB];
-    Basis<DIM, ORDER>::eval(s, p);
-    for (int r = 0; r < DIM; r++) {
-      double acc = 0.0;
-      for (int c = 0; c < NB; c++) acc += pj[L::R + NB * r + c] * p[c];
-      as[r] -= bm.c * acc;
-      if (VISIT) {
+    if (SCATTER) {
+      double t[3] = {0.0, 0.0, 0.0};
+      for (int r = 0; r < DIM; r++) {
         double own = 0.0;
         for (int c = 0; c < DIM; c++) own += Pi[3 * r + c] * bm.g[c];
-        fb[r] = Vi * own - bm.c * acc;
+        t[r] = Vi * own;
+        // a pair force (+t on i, -t on j) counted once: twice for the halving tally
+        if (VISIT) fb[r] = 2.0 * t[r];
+      }
+      scatter(j, t);
+    } else {
+      double s[3] = {-bm.X[0] * inv_h, -bm.X[1] * inv_h, -bm.X[2] * inv_h}, p[NB];
+      Basis<DIM, ORDER>::eval(s, p);
+      for (int r = 0; r < DIM; r++) {
+        double acc = 0.0;
+        for (int c = 0; c < NB; c++) acc += pj[L::R + NB * r + c] * p[c];
+        as[r] -= bm.c * acc;
+        if (VISIT) {
+          double own = 0.0;
+          for (int c = 0; c < DIM; c++) own += Pi[3 * r + c] * bm.g[c];
+          fb[r] = Vi * own - bm.c * acc;
+        }
       }
     }
     const double *xj = x(j);
