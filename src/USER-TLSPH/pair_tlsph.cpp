@@ -32,14 +32,7 @@ const char *const MATERIAL_KEYS = "E, nu, rho";
 PairTLSPH::PairTLSPH(LAMMPS *lmp) : Pair(lmp)
 {
   bonds = nullptr;
-  h = 0.0;
-  alpha = 1.0;
-  beta = 0.0;
-  gamma = 1.0;
-  plane_stress = 0;
-  cutfactor = 1.1;
-  order = 2;
-  thickness = 1.0;
+  set_defaults();
   ndegraded = 0;
   report_fallback = 1;
   dim = 3;
@@ -100,9 +93,9 @@ void PairTLSPH::allocate()
                              [cutfactor C]
 ------------------------------------------------------------------------- */
 
-void PairTLSPH::settings(int narg, char **arg)
+// the documented defaults of pair_style tlsph (doc/pair_tlsph.rst, "Default")
+void PairTLSPH::set_defaults()
 {
-  dim = domain->dimension;
   h = 0.0;
   alpha = 1.0;
   beta = 0.0;
@@ -111,6 +104,12 @@ void PairTLSPH::settings(int narg, char **arg)
   cutfactor = 1.1;
   order = 2;
   thickness = 1.0;
+}
+
+void PairTLSPH::settings(int narg, char **arg)
+{
+  set_defaults();
+  dim = domain->dimension;
   bool have_h = false;
 
   int iarg = 0;

@@ -135,6 +135,7 @@ class PairTLSPH : public Pair {
   template <int DIM, int ORDER> void dispatch_forces(int hg, int visc, int vir, int newton);
 
   void allocate();
+  void set_defaults();
 };
 
 }    // namespace LAMMPS_NS
