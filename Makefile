@@ -5,7 +5,7 @@
 # $(TLSPH_CACHE) (default ~/.cache/tlsph): a second run is fast.
 
 BUILD        ?= build
-MAIN_EXAMPLE ?= cantilever-2d
+MAIN_EXAMPLE ?= crack-branching
 JOBS         ?= 2
 PYTHON       ?= /usr/bin/python3
 CMAKE_ARGS   ?=

@@ -1,0 +1,209 @@
+#!/usr/bin/env python3
+"""Summary of a crack-branching run: the crack measured by tools/crack_measure.py
+next to the thesis's numbers and the acceptance criteria of the benchmark.
+
+  summarise.py PREFIX [--window S] [--threshold PHI]
+
+Reads PREFIX.dump and PREFIX.log; writes PREFIX.crack.{json,csv,txt} (the tool's
+output), PREFIX.speed.png (tip speed, Rayleigh speed drawn), PREFIX.montage.png
+(damage field at 10, 20, ... us) and prints the summary table.
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(here, '..', '..', 'tools'))
+import crack_measure as cm  # noqa: E402
+
+RAYLEIGH = 2125.0      # m/s, plane strain (REFERENCE.md)
+THESIS = dict(initiation=8e-6, branching=33e-6, edge=56e-6)
+
+
+def log_info(path):
+    txt = open(path).read()
+    info = {}
+    m = re.findall(r'^Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms', txt, re.M)
+    if m:
+        info['loop_s'] = float(m[-1][0]); info['procs'] = int(m[-1][1])
+        info['steps'] = int(m[-1][2]); info['atoms'] = int(m[-1][3])
+    m = re.search(r'^Total wall time: (\d+):(\d+):(\d+)', txt, re.M)
+    if m:
+        info['wall_s'] = int(m.group(1)) * 3600 + int(m.group(2)) * 60 + int(m.group(3))
+    m = re.search(r'critical stretch s_c = ([0-9.eE+-]+)', txt)
+    if m:
+        info['sc'] = float(m.group(1))
+    # LAMMPS echoes each input line, then again with the variables substituted
+    m = [v for v in re.findall(r'^pair_style\s+tlsph/damage (.*)$', txt, re.M) if '$' not in v]
+    if m:
+        info['pair_style'] = ' '.join(m[-1].split())
+    m = [v for v in re.findall(r'^\s*fix\s+filt\s+\S+\s+tlsph/velocity/filter\s+(\S+\s+\S+)', txt, re.M)
+         if '$' not in v]
+    if m:
+        info['filter'] = m[-1]
+    m = re.search(r'^ERROR.*$', txt, re.M)
+    if m:
+        info['error'] = m.group(0).strip()
+        for k in ('loop_s', 'steps', 'wall_s'):   # those were of an earlier run (run 0)
+            info.pop(k, None)
+    # thermo block of the main run (the one with v_broken): columns by name
+    lines = txt.splitlines()
+    th = None
+    for k, ln in enumerate(lines):
+        cols = ln.split()
+        if cols[:2] == ['Step', 'Time'] and 'v_broken' in cols:
+            rows = []
+            for row in lines[k + 1:]:
+                v = row.split()
+                if len(v) != len(cols):
+                    break
+                try:
+                    rows.append([float(x) for x in v])
+                except ValueError:
+                    break
+            if rows:
+                th = {c: [r[i] for r in rows] for i, c in enumerate(cols)}
+    info['thermo'] = th
+    if th:
+        info.setdefault('steps', int(th['Step'][-1]))
+        # the first output time at which more bonds are broken than at step 0 (the
+        # bonds cut by the pre-crack count as broken from the start)
+        b = th['v_broken']
+        for i in range(1, len(b)):
+            if b[i] > b[0]:
+                info['first_break_time'] = th['Time'][i]
+                info['first_break_prev_time'] = th['Time'][i - 1]
+                break
+        if 'v_esum' in th and 'v_W' in th:
+            wmax = max(abs(w) for w in th['v_W']) or 1.0
+            ex = [(e - w) / wmax for e, w in zip(th['v_esum'], th['v_W'])]
+            i = max(range(len(ex)), key=lambda j: ex[j])
+            info['energy_excess_max'] = ex[i]
+            info['energy_excess_time'] = th['Time'][i]
+            info['energy_final'] = (th['v_esum'][-1], th['v_W'][-1])
+            on = [j for j in range(len(ex)) if ex[j] > 0.1]
+            info['energy_onset_time'] = th['Time'][on[0]] if on else None
+            ke = th['c_e[4]']
+            j = max(range(len(ke)), key=lambda q: ke[q])
+            info['ke_max'] = (ke[j], th['Time'][j])
+    return info
+
+
+def git_rev():
+    try:
+        r = subprocess.run(['git', '-C', here, 'log', '-1', '--format=%h %ci'], capture_output=True,
+                           text=True, timeout=10)
+        d = subprocess.run(['git', '-C', here, 'status', '--short', '--', '../../src'],
+                           capture_output=True, text=True, timeout=10)
+        return r.stdout.strip() + (' (src modified)' if d.stdout.strip() else '')
+    except Exception:
+        return 'unknown'
+
+
+def us(v):
+    return 'n/a' if v is None else f'{v * 1e6:.1f} us'
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('prefix')
+    ap.add_argument('--window', type=float, default=3e-6)
+    ap.add_argument('--threshold', type=float, default=0.3)
+    ap.add_argument('--label', default='')
+    a = ap.parse_args()
+    p = a.prefix
+    info = log_info(p + '.log')
+    res = cm.analyse(cm.read_dump(p + '.dump'), [cm.Seed('crack', 0.05, 0.02, 0.0)],
+                     target_edges={'crack': 'xmax'}, threshold=a.threshold, window=a.window,
+                     tip='projection',
+                     regions={'top_row': (-1, 1, 0.0395, 1), 'bottom_row': (-1, 1, -1, 0.0005)})
+    cm.write_outputs(res, p + '.crack')
+    cm.plot_speed(res, p + '.speed.png', rayleigh=RAYLEIGH,
+                  title=f'crack branching {a.label}'.strip())
+    tend = res['time'][-1]
+    times = [t * 1e-6 for t in range(10, int(tend * 1e6) + 1, 10)]
+    cm.montage(p + '.dump', p + '.montage.png', times=times, ncols=2, vmax=1.0,
+               title=f'damage phi, crack branching {a.label}'.strip())
+    c = res['cracks']['crack']
+    ini, br, vmax = c['initiation_time'], c['branching_time'], c['speed_max']
+    nfin, side = c['branches_final'], c['side_branches_max']
+    other = max(res['other_cracked'])
+    edge2 = c.get('two_branches_at_target_time')
+    nat = c.get('branches_at_target_final', 0)
+    rows = []
+
+    def row(q, meas, thesis, crit, ok):
+        rows.append((q, meas, thesis, crit, '-' if ok is None else ('yes' if ok else 'NO')))
+
+    row('crack initiation', us(ini), '~8 us', '< 15 us', ini is not None and ini < 15e-6)
+    row('branching time (persistent 2 branches)', us(br) + (f' (detected {us(c["branching_detected_time"])})'
+                                                             if br is not None else ''),
+        '~33 us', '25 .. 40 us', br is not None and 25e-6 <= br <= 40e-6)
+    row('main branches at the end', f'{nfin} (max {c["branches_max_persistent"]})', '2', '2',
+        nfin == 2 and c['branches_max_persistent'] == 2)
+    row('max tip speed', 'n/a' if vmax is None else f'{vmax:.0f} m/s at {us(c["speed_max_time"])}',
+        '< Rayleigh', f'<= {RAYLEIGH:.0f} m/s', vmax is not None and vmax <= RAYLEIGH)
+    row('spurious branches / damage off the crack',
+        f'{side} short side branches, {other} cracked particles off the crack',
+        'none', 'none', side == 0 and other == 0 and c['branches_max_persistent'] <= 2)
+    row('both branches reach the right edge',
+        (f'yes, at {us(edge2)}' if edge2 is not None else
+         f'no: {nat} branch(es) there; the crack (one tip) reached it at {us(c["target_reached_time"])}'
+         if c['target_reached_time'] is not None else
+         f'no ({nat} branch(es) at x = 100 mm; crack tip at x = '
+         f'{c["tip_final"][0] * 1e3:.1f} mm at {us(tend)})' if c['tip_final'] else 'no'),
+        '56 us', 'yes', edge2 is not None)
+    lines = []
+    lines.append(f'crack branching {a.label}: {p}')
+    lines.append(f'code: {git_rev()}, binary md5 '
+                 + (open(p + '.binary').read().split()[0][:12] if os.path.exists(p + '.binary') else '?'))
+    lines.append(f"pair_style tlsph/damage {info.get('pair_style', '?')}")
+    lines.append(f"velocity filter {info.get('filter', '?')}, s_c = {info.get('sc', float('nan')):.4g}")
+    lines.append(f"particles {info.get('atoms', res['n_particles'])}, steps {info.get('steps')}, "
+                 f"simulated {tend * 1e6:.1f} us, loop time {info.get('loop_s', float('nan')):.0f} s, "
+                 f"wall time {info.get('wall_s', '?')} s on {info.get('procs', 1)} MPI rank(s) "
+                 f"(shared machine)")
+    if 'error' in info:
+        lines.append(f"LAMMPS STOPPED: {info['error']}")
+    lines.append(f"crack_measure: phi >= {a.threshold}, speed window {a.window * 1e6:g} us, "
+                 f"dump every {(res['time'][2] - res['time'][1]) * 1e6:.2f} us")
+    lines.append('')
+    w = [max(len(r[i]) for r in rows + [('quantity', 'measured', 'thesis', 'acceptance', 'met')])
+         for i in range(5)]
+    hdr = ('quantity', 'measured', 'thesis', 'acceptance', 'met')
+    lines.append('  '.join(h.ljust(w[i]) for i, h in enumerate(hdr)))
+    lines.append('  '.join('-' * w[i] for i in range(5)))
+    for r in rows:
+        lines.append('  '.join(v.ljust(w[i]) for i, v in enumerate(r)))
+    lines.append('')
+    lines.append(f"final crack tip {c['tip_final']}, length {c['length_final'] * 1e3:.1f} mm from the "
+                 f"pre-crack tip; branches at the end: "
+                 + ('; '.join(f"tip {b['tip']}, angle {b['angle_deg']:.0f} deg, edges {b['edges']}"
+                              for b in c['branches_at_end']) or 'none'))
+    mean_v = None
+    if ini is not None and c['tip_final'] is not None and tend > ini:
+        mean_v = c['length_final'] / (tend - ini)
+        lines.append(f'mean tip speed from initiation to the end: {mean_v:.0f} m/s')
+    if 'energy_excess_max' in info:
+        es, wf = info['energy_final']
+        lines.append(f"energy balance (thermo, every 1 us): strain + hourglass + viscous + kinetic energy at "
+                     f"the end {es:.4g} J/m vs traction work {wf:.4g} J/m; largest excess (E - W)/max W = "
+                     f"{info['energy_excess_max']:+.3f} at {info['energy_excess_time'] * 1e6:.1f} us "
+                     f"(must stay <= ~0: broken bonds only lose energy), first above +0.1 at "
+                     f"{us(info['energy_onset_time'])}")
+    if 'first_break_time' in info:
+        lines.append(f"first bond broken (other than the pre-crack's): between "
+                     f"{info['first_break_prev_time'] * 1e6:.1f} and {info['first_break_time'] * 1e6:.1f} us "
+                     f"(thermo output)")
+    lines.append('')
+    lines.append('tool summary:')
+    lines.append(open(p + '.crack.txt').read().rstrip())
+    txt = '\n'.join(lines)
+    print(txt)
+    return txt
+
+
+if __name__ == '__main__':
+    main()

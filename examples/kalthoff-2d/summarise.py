@@ -1,0 +1,224 @@
+#!/usr/bin/env python3
+"""Summary of a 2D Kalthoff-Winkler run: both cracks measured by
+tools/crack_measure.py, next to the thesis's and the experiment's numbers.
+
+  summarise.py PREFIX [--label L] [--window S] [--threshold PHI]
+
+Reads PREFIX.dump and PREFIX.log; writes PREFIX.crack.{json,csv,txt},
+PREFIX.speed.png (tip speeds, Rayleigh speed 2803 m/s drawn), PREFIX.montage.png
+and prints the summary table.
+"""
+import argparse
+import math
+import os
+import re
+import subprocess
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(here, '..', '..', 'tools'))
+import crack_measure as cm  # noqa: E402
+
+RAYLEIGH = 2803.0   # m/s, plane strain (REFERENCE.md)
+
+
+def log_info(path):
+    txt = open(path).read()
+    info = {}
+    m = re.findall(r'^Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms', txt, re.M)
+    if m:
+        info['loop_s'] = float(m[-1][0]); info['procs'] = int(m[-1][1])
+        info['steps'] = int(m[-1][2]); info['atoms'] = int(m[-1][3])
+    m = re.search(r'^Total wall time: (\d+):(\d+):(\d+)', txt, re.M)
+    if m:
+        info['wall_s'] = int(m.group(1)) * 3600 + int(m.group(2)) * 60 + int(m.group(3))
+    m = re.search(r'critical stretch s_c = ([0-9.eE+-]+)', txt)
+    if m:
+        info['sc'] = float(m.group(1))
+    # LAMMPS echoes each input line, then again with the variables substituted
+    m = [v for v in re.findall(r'^pair_style\s+tlsph/damage (.*)$', txt, re.M) if '$' not in v]
+    if m:
+        info['pair_style'] = ' '.join(m[-1].split())
+    m = [v for v in re.findall(r'^\s*fix\s+filt\s+\S+\s+tlsph/velocity/filter\s+(\S+\s+\S+)', txt, re.M)
+         if '$' not in v]
+    if m:
+        info['filter'] = m[-1]
+    m = re.search(r'^ERROR.*$', txt, re.M)
+    if m:
+        info['error'] = m.group(0).strip()
+        for k in ('loop_s', 'steps', 'wall_s'):   # those were of an earlier run (run 0)
+            info.pop(k, None)
+    # thermo block of the main run (the one with v_broken): columns by name
+    lines = txt.splitlines()
+    th = None
+    for k, ln in enumerate(lines):
+        cols = ln.split()
+        if cols[:2] == ['Step', 'Time'] and 'v_broken' in cols:
+            rows = []
+            for row in lines[k + 1:]:
+                v = row.split()
+                if len(v) != len(cols):
+                    break
+                try:
+                    rows.append([float(x) for x in v])
+                except ValueError:
+                    break
+            if rows:
+                th = {c: [r[i] for r in rows] for i, c in enumerate(cols)}
+    info['thermo'] = th
+    if th:
+        info.setdefault('steps', int(th['Step'][-1]))
+        # the first output time at which more bonds are broken than at step 0 (the
+        # bonds cut by the pre-crack count as broken from the start)
+        b = th['v_broken']
+        for i in range(1, len(b)):
+            if b[i] > b[0]:
+                info['first_break_time'] = th['Time'][i]
+                info['first_break_prev_time'] = th['Time'][i - 1]
+                break
+        if 'v_esum' in th and 'v_W' in th:
+            wmax = max(abs(w) for w in th['v_W']) or 1.0
+            ex = [(e - w) / wmax for e, w in zip(th['v_esum'], th['v_W'])]
+            i = max(range(len(ex)), key=lambda j: ex[j])
+            info['energy_excess_max'] = ex[i]
+            info['energy_excess_time'] = th['Time'][i]
+            info['energy_final'] = (th['v_esum'][-1], th['v_W'][-1])
+            on = [j for j in range(len(ex)) if ex[j] > 0.1]
+            info['energy_onset_time'] = th['Time'][on[0]] if on else None
+            ke = th['c_e[4]']
+            j = max(range(len(ke)), key=lambda q: ke[q])
+            info['ke_max'] = (ke[j], th['Time'][j])
+    return info
+
+
+def git_rev():
+    try:
+        r = subprocess.run(['git', '-C', here, 'log', '-1', '--format=%h %ci'], capture_output=True,
+                           text=True, timeout=10)
+        d = subprocess.run(['git', '-C', here, 'status', '--short', '--', '../../src'],
+                           capture_output=True, text=True, timeout=10)
+        return r.stdout.strip() + (' (src modified)' if d.stdout.strip() else '')
+    except Exception:
+        return 'unknown'
+
+
+def us(v):
+    return 'n/a' if v is None else f'{v * 1e6:.1f} us'
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('prefix')
+    ap.add_argument('--label', default='')
+    ap.add_argument('--window', type=float, default=4e-6)
+    ap.add_argument('--threshold', type=float, default=0.3)
+    ap.add_argument('--angle-near', type=float, default=0.02,
+                    help='outer radius [m] of the fit for the initial kink angle')
+    a = ap.parse_args()
+    p = a.prefix
+    info = log_info(p + '.log')
+    seeds = [cm.Seed('upper', 0.05, 0.025, 'auto'), cm.Seed('lower', 0.05, -0.025, 'auto')]
+    frames = list(cm.read_dump(p + '.dump'))
+    dx = math.sqrt(0.1 * 0.2 / len(frames[0].data))
+    # under the impactor: its strip less the notch flanks (which start damaged)
+    regions = {'under_impactor': (-1.0, 5.01 * dx, -0.025 + 2.01 * dx, 0.025 - 2.01 * dx),
+               'impacted_edge_strip': (-1.0, 10.01 * dx, -0.1, 0.1)}
+    kw = dict(target_edges={'upper': 'any', 'lower': 'any'}, threshold=a.threshold,
+              window=a.window, ref_dir=0.0, regions=regions)
+    res = cm.analyse(frames, seeds, **kw)
+    res['symmetry'] = cm.symmetry(res, 'upper', 'lower', axis='y', about=0.0)
+    # initial kink angle: the fit over the first angle_near metres of each crack
+    near = cm.analyse(frames, seeds, angle_range=(3.0, a.angle_near), **kw)
+    for s in ('upper', 'lower'):
+        res['cracks'][s]['angle_near_deg'] = near['cracks'][s]['angle_deg']
+        res['cracks'][s]['angle_near_range'] = [3 * res['dx'], a.angle_near]
+    cm.write_outputs(res, p + '.crack')
+    cm.plot_speed(res, p + '.speed.png', rayleigh=RAYLEIGH,
+                  title=f'Kalthoff-Winkler 2D {a.label}'.strip())
+    tend = res['time'][-1]
+    times = [t * 1e-6 for t in (20, 35, 50, 65, 80, 95, 110) if t * 1e-6 <= tend + 1e-6]
+    cm.montage(p + '.dump', p + '.montage.png', times=times, ncols=4, panel_width=3.0,
+               title=f'damage phi, Kalthoff-Winkler 2D {a.label}'.strip())
+    U, L = res['cracks']['upper'], res['cracks']['lower']
+    sym = res['symmetry']
+
+    def f(v, fmt):
+        return 'n/a' if v is None else format(v, fmt)
+
+    def edge(c):
+        if c['target_reached_time'] is None:
+            tip = c['tip_final']
+            return f"no (tip at {tip[0] * 1e3:.0f}, {tip[1] * 1e3:.0f} mm)" if tip else 'no crack'
+        e = min(c['edge_reached_time'], key=c['edge_reached_time'].get)
+        return f"{us(c['target_reached_time'])} ({e})"
+
+    rows = [
+        ('crack angle to the impact direction, whole crack', f(U['angle_deg'], '.1f') + ' deg',
+         f(L['angle_deg'], '.1f') + ' deg', '68 deg (1.67 mm: 52)', '~70 deg'),
+        (f'initial kink angle (fit within {a.angle_near * 1e3:.0f} mm of the tip)',
+         f(U['angle_near_deg'], '.1f') + ' deg', f(L['angle_near_deg'], '.1f') + ' deg', '-', '~70 deg'),
+        ('initiation time', us(U['initiation_time']), us(L['initiation_time']),
+         '24 us (1.67 mm: 30)', '-'),
+        ('time to reach a plate edge', edge(U), edge(L), '98 us (1.67 mm: 110, far edge)', '-'),
+        ('peak crack speed', f(U['speed_max'], '.0f') + ' m/s', f(L['speed_max'], '.0f') + ' m/s',
+         '1581 m/s', f'< Rayleigh {RAYLEIGH:.0f} m/s'),
+        ('branches / short side branches', f"{U['branches_max_persistent']} / {U['side_branches_max']}",
+         f"{L['branches_max_persistent']} / {L['side_branches_max']}", '1 / 0', '1'),
+        ('final crack length (chord from the notch tip)', f(U['length_final'] * 1e3, '.1f') + ' mm',
+         f(L['length_final'] * 1e3, '.1f') + ' mm', '-', '-'),
+    ]
+    hdr = ('quantity', 'upper crack', 'lower crack', 'thesis (2D, dx = 1 mm)', 'experiment')
+    w = [max(len(r[i]) for r in rows + [hdr]) for i in range(5)]
+    out = [f'Kalthoff-Winkler 2D {a.label}: {p}',
+           f'code: {git_rev()}, binary md5 '
+           + (open(p + '.binary').read().split()[0][:12] if os.path.exists(p + '.binary') else '?'),
+           f"pair_style tlsph/damage {info.get('pair_style', '?')}",
+           f"velocity filter {info.get('filter', '?')}, s_c = {info.get('sc', float('nan')):.4g}, "
+           f"dx = {res['dx'] * 1e3:.3g} mm",
+           f"particles {info.get('atoms', res['n_particles'])}, steps {info.get('steps')}, "
+           f"simulated {tend * 1e6:.1f} us, loop time {info.get('loop_s', float('nan')):.0f} s, "
+           f"wall time {info.get('wall_s', '?')} s on {info.get('procs', 1)} MPI rank(s) (shared machine)",
+           f"crack_measure: phi >= {a.threshold}, speed window {a.window * 1e6:g} us, "
+           f"angle to +x (impact direction), fitted from 3 dx (initial) / 5 dx (whole) from the notch tip",
+           *([f"LAMMPS STOPPED: {info['error']}"] if 'error' in info else []),
+           '',
+           '  '.join(h.ljust(w[i]) for i, h in enumerate(hdr)),
+           '  '.join('-' * w[i] for i in range(5))]
+    out += ['  '.join(v.ljust(w[i]) for i, v in enumerate(r)) for r in rows]
+    out.append('')
+    out.append('symmetry (lower crack mirrored about y = 0): initiation difference '
+               f"{f(sym['initiation_time_diff'] and sym['initiation_time_diff'] * 1e6, '.2f')} us, angle difference "
+               f"{f(sym['angle_diff_deg'], '.2f')} deg, final length difference "
+               f"{f(sym['length_final_diff'] and sym['length_final_diff'] * 1e3, '.2f')} mm, largest tip distance "
+               f"{f(sym['tip_mirror_distance_max'] * 1e3, '.2f')} mm")
+    ri = res['regions']['under_impactor']
+    re_ = res['regions']['impacted_edge_strip']
+    out.append(f"under the impactor (x < 5 dx, |y| < 25 mm - 2 dx): max phi {max(ri['phi_max']):.3f}, "
+               f"cracked (phi >= {a.threshold}) particles at most {ri['n_cracked_max']}, damaged "
+               f"(phi > 0) at most {max(ri['n_damaged'])}")
+    out.append(f"impacted-edge strip (x < 10 dx, all y): largest phi rise {re_['dphi_max_all']:.3f}, "
+               f"newly damaged particles at most {max(re_['n_damaged'])}, cracked at most "
+               f"{re_['n_cracked_max']}")
+    out.append(f"cracked particles in neither crack (final / max): {res['other_cracked'][-1]} / "
+               f"{max(res['other_cracked'])}")
+    if 'energy_excess_max' in info:
+        es, wf = info['energy_final']
+        out.append(f"energy balance (thermo, every 2 us): strain + hourglass + viscous + kinetic energy at the "
+                   f"end {es:.4g} J/m vs impactor work {wf:.4g} J/m; largest excess (E - W)/max W = "
+                   f"{info['energy_excess_max']:+.3f} at {info['energy_excess_time'] * 1e6:.1f} us "
+                   f"(must stay <= ~0: broken bonds only lose energy), first above +0.1 at "
+                   f"{us(info['energy_onset_time'])}; kinetic energy max "
+                   f"{info['ke_max'][0]:.4g} J/m at {info['ke_max'][1] * 1e6:.1f} us")
+    if 'first_break_time' in info:
+        out.append(f"first bond broken anywhere (other than the notch cuts): between "
+                   f"{info['first_break_prev_time'] * 1e6:.1f} and {info['first_break_time'] * 1e6:.1f} us "
+                   f"(thermo output)")
+    out.append('')
+    out.append('tool summary:')
+    out.append(open(p + '.crack.txt').read().rstrip())
+    txt = '\n'.join(out)
+    print(txt)
+
+
+if __name__ == '__main__':
+    main()
