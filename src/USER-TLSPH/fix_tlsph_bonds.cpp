@@ -34,6 +34,8 @@ FixTLSPHBonds::FixTLSPHBonds(LAMMPS *lmp, int narg, char **arg) :
   tallied_step = -1;
   rebuild = 1;
   fresh = 0;
+  nfrozen = 0;
+  frozen = nullptr;
   cutoff = 0.0;
   nbonds_total = 0;
 
@@ -62,6 +64,7 @@ FixTLSPHBonds::~FixTLSPHBonds()
   memory->destroy(work_visc);
   memory->destroy(f_hg);
   memory->destroy(f_visc);
+  memory->destroy(frozen);
 }
 
 int FixTLSPHBonds::setmask()
@@ -265,6 +268,19 @@ void FixTLSPHBonds::grow_arrays(int nmax)
   memory->grow(work_visc, nmax, "tlsph/bonds:work_visc");
   memory->grow(f_hg, nmax, 3, "tlsph/bonds:f_hg");
   memory->grow(f_visc, nmax, 3, "tlsph/bonds:f_visc");
+  if (nfrozen) memory->grow(frozen, nmax, 1 + nfrozen, "tlsph/bonds:frozen");
+}
+
+void FixTLSPHBonds::set_frozen_size(int n)
+{
+  if (n == nfrozen) return;
+  // a different correction: every particle recomputes and freezes it again
+  nfrozen = n;
+  memory->destroy(frozen);
+  if (n) {
+    memory->create(frozen, atom->nmax, 1 + n, "tlsph/bonds:frozen");
+    for (int i = 0; i < atom->nmax; i++) frozen[i][0] = 0.0;
+  }
 }
 
 void FixTLSPHBonds::set_arrays(int i)
@@ -274,6 +290,7 @@ void FixTLSPHBonds::set_arrays(int i)
   nintact0[i] = 0;
   work_hg[i] = work_visc[i] = 0.0;
   for (int d = 0; d < 3; d++) f_hg[i][d] = f_visc[i][d] = 0.0;
+  if (nfrozen) frozen[i][0] = 0.0;
 }
 
 void FixTLSPHBonds::copy_arrays(int i, int j, int /*delflag*/)
@@ -290,6 +307,7 @@ void FixTLSPHBonds::copy_arrays(int i, int j, int /*delflag*/)
     partner[j][m] = partner[i][m];
     state[j][m] = state[i][m];
   }
+  for (int k = 0; k < (nfrozen ? 1 + nfrozen : 0); k++) frozen[j][k] = frozen[i][k];
 }
 
 int FixTLSPHBonds::pack_exchange(int i, double *buf)
@@ -303,6 +321,7 @@ int FixTLSPHBonds::pack_exchange(int i, double *buf)
     buf[m++] = ubuf(partner[i][n]).d;
     buf[m++] = state[i][n];
   }
+  for (int k = 0; k < (nfrozen ? 1 + nfrozen : 0); k++) buf[m++] = frozen[i][k];
   return m;
 }
 
@@ -317,15 +336,16 @@ int FixTLSPHBonds::unpack_exchange(int nlocal, double *buf)
     partner[nlocal][n] = (tagint) ubuf(buf[m++]).i;
     state[nlocal][n] = static_cast<int>(buf[m++]);
   }
+  for (int k = 0; k < (nfrozen ? 1 + nfrozen : 0); k++) frozen[nlocal][k] = buf[m++];
   return m;
 }
 
 void FixTLSPHBonds::write_restart(FILE *fp)
 {
   if (comm->me != 0) return;
-  double list[4] = {(double) first, (double) maxpartner, (double) nbonds_total,
-                     (double) precounted};
-  int n = 4;
+  double list[5] = {(double) first, (double) maxpartner, (double) nbonds_total,
+                     (double) precounted, (double) nfrozen};
+  int n = 5;
   int size = n * sizeof(double);
   fwrite(&size, sizeof(int), 1, fp);
   fwrite(list, sizeof(double), n, fp);
@@ -338,6 +358,9 @@ void FixTLSPHBonds::restart(char *buf)
   maxpartner = static_cast<int>(list[1]);
   nbonds_total = static_cast<bigint>(list[2]);
   precounted = static_cast<int>(list[3]);
+  nfrozen = static_cast<int>(list[4]);
+  memory->destroy(frozen);
+  if (nfrozen) memory->create(frozen, atom->nmax, 1 + nfrozen, "tlsph/bonds:frozen");
   // per-atom rows arrive through unpack_restart(): make room for them
   memory->destroy(partner);
   memory->destroy(state);
@@ -365,10 +388,10 @@ void FixTLSPHBonds::unpack_restart(int nlocal, int nth)
 
 int FixTLSPHBonds::maxsize_restart()
 {
-  return 2 * maxpartner + 5;
+  return 2 * maxpartner + 5 + (nfrozen ? 1 + nfrozen : 0);
 }
 
 int FixTLSPHBonds::size_restart(int nlocal)
 {
-  return 2 * npartner[nlocal] + 5;
+  return 2 * npartner[nlocal] + 5 + (nfrozen ? 1 + nfrozen : 0);
 }

@@ -65,6 +65,13 @@ class FixTLSPHBonds : public Fix {
   int *nintact0;        // # of partners at setup (denominator of the damage)
   tagint **partner;     // global IDs of partners
   int **state;          // INTACT or BROKEN, per bond
+  // gradient correction frozen at setup (pair tlsph/damage 'correction
+  // setup'): per atom [0] = 1 once set, then the correction matrix Q. It
+  // migrates and restarts with the atom, so it never depends on which
+  // broken partners are still present as ghosts.
+  int nfrozen;          // doubles of Q kept per atom (0: none kept)
+  double **frozen;
+  void set_frozen_size(int n);
   double *work_hg;      // work done against hourglass forces, per atom
   double *work_visc;    // work dissipated by artificial viscosity, per atom
   double **f_hg;        // hourglass and viscous force of this step, per atom: written

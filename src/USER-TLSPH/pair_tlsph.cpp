@@ -421,11 +421,15 @@ void PairTLSPH::build_bond_cache()
   const double kernel_scale = (dim == 2) ? 1.0 / thickness : 1.0;
   int nb = 0;
   std::vector<double> vj(bonds->maxpartner);
+  // Shepard sum kernel_scale * sum_j V_j W_ij (self included): about 1 inside
+  // the body when the volumes match the kernel normalisation
+  double shepard_max = 0.0;
   int degraded = 0;
   for (int i = 0; i < nlocal; i++) {
     bond_start[i] = nb;
     const int np = bonds->npartner[i];
     if (np > (int) vj.size()) vj.resize(np);
+    double shepard = kernel_scale * vfrac[i] * kernel.value(0.0);
     tagint *partner = bonds->partner[i];
     int *state = bonds->state[i];
     // intact bonds first, then (for correction_from_all_partners) the broken
@@ -448,6 +452,7 @@ void PairTLSPH::build_bond_cache()
         domain->minimum_image(X[0], X[1], X[2]);
         if (dim == 2) X[2] = 0.0;
         make_bond(kernel, X, vfrac[i], vfrac[j], j, k, cache[nb + n], kernel_scale);
+        if (pass == 0) shepard += kernel_scale * vfrac[j] * kernel.value(sqrt(dot3(X, X)));
         vj[n] = vfrac[j];
         n++;
       }
@@ -455,8 +460,21 @@ void PairTLSPH::build_bond_cache()
     }
     const int nall = n;
     n = nbond[i];
+    shepard_max = MAX(shepard_max, shepard);
     BondCache *b = &cache[nb];
-    if (correct_particle(i, b, nall, vj.data()) < order) degraded++;
+    double *fz = (correction_from_all_partners && bonds->nfrozen) ? bonds->frozen[i] : nullptr;
+    if (fz && fz[0] == 1.0) {
+      // correction frozen at setup: independent of which broken partners
+      // are still present as ghosts
+      for (int k = 0; k < bonds->nfrozen; k++) Q[i][k] = fz[1 + k];
+      apply_particle(i, b, nall, vj.data());
+    } else {
+      if (correct_particle(i, b, nall, vj.data()) < order) degraded++;
+      if (fz) {
+        for (int k = 0; k < bonds->nfrozen; k++) fz[1 + k] = Q[i][k];
+        fz[0] = 1.0;
+      }
+    }
     if (nall > n) {
       // broken bonds entered the correction only: sum_j g_ij runs over intact ones
       sumg[i][0] = sumg[i][1] = sumg[i][2] = 0.0;
@@ -466,6 +484,16 @@ void PairTLSPH::build_bond_cache()
     nb += nall;
   }
   ndegraded = degraded;
+  if (report_fallback) {
+    double all;
+    MPI_Allreduce(&shepard_max, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+    if ((all < 0.5 || all > 2.0) && comm->me == 0)
+      error->warning(FLERR, "pair tlsph: the particle volumes do not match the kernel "
+                            "normalisation (max sum_j V_j W_ij = {:.3g}, about 1 expected): {}",
+                     all, dim == 2 ? "in 2D give the out-of-plane thickness contained in the "
+                                     "volumes with the 'thickness' keyword"
+                                   : "check the volume units and h");
+  }
   bond_start[nlocal] = nb;
 }
 
@@ -502,6 +530,18 @@ struct VirialTally {
   }
 };
 }    // namespace
+
+// corrected gradients of the bonds b[0..n) of particle i for its current Q[i]
+void PairTLSPH::apply_particle(int i, BondCache *b, int n, const double *vj)
+{
+  if (dim == 2) {
+    if (order == 1) apply_correction<2, 1>(b, n, vj, kernel, Q[i], sumg[i]);
+    else apply_correction<2, 2>(b, n, vj, kernel, Q[i], sumg[i]);
+  } else {
+    if (order == 1) apply_correction<3, 1>(b, n, vj, kernel, Q[i], sumg[i]);
+    else apply_correction<3, 2>(b, n, vj, kernel, Q[i], sumg[i]);
+  }
+}
 
 /* corrected gradients of particle i over the bonds b[0..n) (vj: partner
    volumes); returns the order achieved */

@@ -105,6 +105,12 @@ class PairTLSPH : public Pair {
   bool correction_from_all_partners = false;    // true: broken bonds stay in the correction
   double *alpha_atom = nullptr;                  // per-particle viscosity alpha (null: alpha)
   int correct_particle(int i, BondCache *b, int n, const double *vj);
+  void apply_particle(int i, BondCache *b, int n, const double *vj);
+  int correction_size() const    // doubles of Q: DIM x basis size
+  {
+    const int nbasis = (order == 1) ? dim : (dim == 2 ? 5 : 9);
+    return dim * nbasis;
+  }
   void read_material_file(const std::string &file, int narg, char **names);
 
   // per-atom arrays (nmax)

@@ -124,6 +124,10 @@ TLSPH_INLINE bool solve_correction(const Bond *b, int nb, const double *Vj,
 }
 }    // namespace detail
 
+template <int DIM, int ORDER>
+TLSPH_INLINE void apply_correction(Bond *b, int nb, const double *Vj, const CubicSpline &kernel,
+                                   const double *Q, double *sumg);
+
 /* Corrected gradients of particle i (see the header comment). Vj[m] is the
    volume of the partner of bond m. Writes Q_i (DIM x Basis::size, row-major)
    and s_i = sum_j g_ij, completes g and c of every bond. A quadratic
@@ -165,10 +169,23 @@ TLSPH_INLINE int correction(Bond *b, int nb, const double *Vj, const CubicSpline
       }
     }
   }
+  apply_correction<DIM, ORDER>(b, nb, Vj, kernel, Q, sumg);
+  (void) weight_order;
+  return achieved;
+}
+
+/* Corrected gradients g_ij = V_j w_ij Q p(X_ij/h) of the bonds b[0..nb) for a
+   given correction Q (from correction(), or frozen at setup), s = sum g_ij,
+   and the reverse weights c = V_i w_ij (make_bond stored V_i in c). */
+template <int DIM, int ORDER>
+TLSPH_INLINE void apply_correction(Bond *b, int nb, const double *Vj, const CubicSpline &kernel,
+                                   const double *Q, double *sumg)
+{
+  constexpr int NB = Basis<DIM, ORDER>::size;
   sumg[0] = sumg[1] = sumg[2] = 0.0;
   const double inv_h = 1.0 / kernel.h;
   for (int m = 0; m < nb; m++) {
-    const double w = detail::bond_weight(b[m], kernel, weight_order);
+    const double w = detail::bond_weight(b[m], kernel, ORDER);
     double s[3] = {b[m].X[0] * inv_h, b[m].X[1] * inv_h, b[m].X[2] * inv_h}, p[NB];
     Basis<DIM, ORDER>::eval(s, p);
     for (int r = 0; r < 3; r++) b[m].g[r] = 0.0;
@@ -180,7 +197,6 @@ TLSPH_INLINE int correction(Bond *b, int nb, const double *Vj, const CubicSpline
     }
     b[m].c *= w;    // make_bond stored V_i
   }
-  return achieved;
 }
 
 /* F_i = I + sum_j (u_j - u_i) (x) g_ij, with u = x - X and the reference
