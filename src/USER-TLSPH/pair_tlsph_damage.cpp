@@ -201,6 +201,16 @@ void PairTLSPHDamage::init_style()
       utils::logmesg(lmp, "pair tlsph/damage: type {} critical stretch s_c = {:.6g}{}\n", t, sc[t],
                      sc_given[t] > 0.0 ? " (given)" : " (from Gc, horizon h)");
   }
+  // squared stretch limits per type pair (the bond uses the smaller s_c)
+  const int ntp = atom->ntypes + 1;
+  stretch_up.assign(ntp * ntp, 0.0);
+  stretch_down.assign(ntp * ntp, 0.0);
+  for (int a = 1; a < ntp; a++)
+    for (int b = 1; b < ntp; b++) {
+      const double s_c = MIN(sc[a], sc[b]);
+      stretch_up[a * ntp + b] = (1.0 + s_c) * (1.0 + s_c);
+      stretch_down[a * ntp + b] = (s_c < 1.0) ? (1.0 - s_c) * (1.0 - s_c) : 0.0;
+    }
   comm_forward = MAX(comm_forward, 1);
   nmax_d = 0;
 }
@@ -307,41 +317,43 @@ void PairTLSPHDamage::recorrect(int i)
   correct_particle(i, b, n, vj.data());
 }
 
-/* ----------------------------------------------------------------------
-   every step, before F: break bonds, update damage and the viscosity
-------------------------------------------------------------------------- */
-
-void PairTLSPHDamage::update_bonds()
+/* Break every intact bond of the local particles whose stretch has reached
+   s_c. Both ends compute the same stretch from the same positions (ghosts are
+   current at this point), so both drop the bond. */
+template <int DIM> void PairTLSPHDamage::break_bonds()
 {
-  if (atom->nmax > nmax_d) grow_damage();
-  if (bonds->fresh) {
-    bonds->fresh = 0;
-    apply_precracks();
-    // the corrections frozen so far still contained the pre-cracked bonds
-    if (bonds->nfrozen)
-      for (int i = 0; i < atom->nlocal; i++) bonds->frozen[i][0] = 0.0;
-    build_bond_cache();
-  }
-
   double **x = atom->x;
   int *type = atom->type;
   const int nlocal = atom->nlocal;
-
-  // (1) stretch criterion: both ends compute the same stretch from the same
-  // positions (ghosts are current at this point), so both drop the bond
+  const double *up = stretch_up.data(), *down = stretch_down.data();
+  const int ntp = atom->ntypes + 1;
   for (int i = 0; i < nlocal; i++) {
     BondCache *b = &cache[bond_start[i]];
     int n = nbond[i];
+    const int ti = type[i] * ntp;
     bool changed = false;
     for (int m = 0; m < n;) {
       const int j = b[m].j;
-      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
-      const double r = sqrt(dx * dx + dy * dy + (dim == 3 ? dz * dz : 0.0));
-      const double r0 = sqrt(dot3(b[m].X, b[m].X));
-      double s = (r - r0) / r0;
-      if (absolute) s = fabs(s);
-      const double s_c = MIN(sc[type[i]], sc[type[j]]);
-      if (s >= s_c) {
+      // s = (r - r0)/r0 >= s_c  <=>  r^2 >= r0^2 (1 + s_c)^2 (and, with the
+      // absolute criterion, s <= -s_c  <=>  r^2 <= r0^2 (1 - s_c)^2): a cheap
+      // filter without square roots; only bonds within round-off of the limit
+      // or beyond it are decided with the stretch itself, as documented
+      double r2 = 0.0, r02 = 0.0;
+      for (int d = 0; d < DIM; d++) {
+        const double dx = x[j][d] - x[i][d];
+        r2 += dx * dx;
+        r02 += b[m].X[d] * b[m].X[d];
+      }
+      const int tt = ti + type[j];
+      bool broken = false;
+      if (r2 >= r02 * up[tt] * (1.0 - 1.0e-10) ||
+          (absolute && r2 <= r02 * down[tt] * (1.0 + 1.0e-10))) {
+        const double r0 = sqrt(r02);
+        double s = (sqrt(r2) - r0) / r0;
+        if (absolute) s = fabs(s);
+        broken = s >= MIN(sc[type[i]], sc[type[j]]);
+      }
+      if (broken) {
         bonds->state[i][b[m].k] = FixTLSPHBonds::BROKEN;
         nbroken_local++;
         // move the bond behind the intact ones (it stays in the segment: the
@@ -361,6 +373,29 @@ void PairTLSPHDamage::update_bonds()
       if (rebuild) recorrect(i);
     }
   }
+}
+
+/* ----------------------------------------------------------------------
+   every step, before F: break bonds, update damage and the viscosity
+------------------------------------------------------------------------- */
+
+void PairTLSPHDamage::update_bonds()
+{
+  if (atom->nmax > nmax_d) grow_damage();
+  if (bonds->fresh) {
+    bonds->fresh = 0;
+    apply_precracks();
+    // the corrections frozen so far still contained the pre-cracked bonds
+    if (bonds->nfrozen)
+      for (int i = 0; i < atom->nlocal; i++) bonds->frozen[i][0] = 0.0;
+    build_bond_cache();
+  }
+
+  const int nlocal = atom->nlocal;
+
+  // (1) stretch criterion (break_bonds)
+  if (dim == 2) break_bonds<2>();
+  else break_bonds<3>();
 
   // (2) damage phi = 1 - intact/initial (thesis Eq. 2.33), then its smoothed
   // form phi' (Eq. 2.34) over the intact bonds: a broken partner "no longer
@@ -381,12 +416,14 @@ void PairTLSPHDamage::update_bonds()
   for (int i = 0; i < nlocal; i++) {
     const BondCache *b = &cache[bond_start[i]];
     const int n = nbond[i];
+    // the kernel values are needed only where a partner is damaged
     double num = 0.0, den = 0.0;
-    for (int m = 0; m < n; m++) {
-      const double W = kernel_value(b[m]);
-      num += phi[b[m].j] * W;
-      den += W;
-    }
+    for (int m = 0; m < n; m++)
+      if (phi[b[m].j] > 0.0) num += phi[b[m].j] * kernel_value(b[m]);
+    if (num > 0.0)
+      for (int m = 0; m < n; m++) den += kernel_value(b[m]);
+    else if (n > 0)
+      den = 1.0;    // all partners undamaged: phi' = 0
     // phi_i - sum_j (phi_i - phi_j) W_ij / sum_j W_ij, written as the W-weighted
     // mean of the partners' damage: the difference form leaves +-1e-17 where
     // it should be 0, and that would switch alpha_d on spuriously

@@ -67,6 +67,7 @@ class PairTLSPHDamage : public PairTLSPH {
   int absolute;            // 1: |stretch| >= s_c breaks (thesis Eq. 2.27), 0: tension only
   int rebuild;             // 1: correction rebuilt from intact bonds, 0: kept from setup
   std::vector<double> Gc, sc_given, sc;    // per type: fracture energy, given s_c, s_c used
+  std::vector<double> stretch_up, stretch_down;    // per type pair: (1 +- s_c)^2
   std::vector<std::array<double, 9>> cracks;    // pre-cracks: 2D segments, 3D parallelograms
 
   int nmax_d;
@@ -78,6 +79,7 @@ class PairTLSPHDamage : public PairTLSPH {
   void apply_precracks();
   bool crosses_crack(const double *A, const double *B) const;
   void recorrect(int i);
+  template <int DIM> void break_bonds();
 };
 
 }    // namespace LAMMPS_NS
