@@ -29,6 +29,7 @@
 #include "pair_tlsph_damage.h"
 #include "update.h"
 
+#include "lammps_driver.h"
 #include "tlsph_styles.h"
 
 #include <gtest/gtest.h>
@@ -60,23 +61,10 @@ constexpr int BROKEN = FixTLSPHBonds::BROKEN;
 
 LAMMPS *open_lammps()
 {
-  std::vector<const char *> args = {"test_tlsph_damage", "-log", "none", "-nocite"};
-  if (!getenv("TLSPH_TEST_VERBOSE")) {
-    args.push_back("-screen");
-    args.push_back("none");
-  }
-  auto lmp = new LAMMPS((int) args.size(), (char **) args.data(), MPI_COMM_WORLD);
-  EXPECT_EQ(tlsph_register_styles(lmp), 0);
-  return lmp;
+  return tlsph_test::open_lammps("test_tlsph_damage");
 }
 
-void run_script(LAMMPS *lmp, const std::string &script)
-{
-  std::istringstream in(script);
-  std::string line;
-  while (std::getline(in, line))
-    if (line.find_first_not_of(" \t") != std::string::npos) lmp->input->one(line);
-}
+using tlsph_test::run_script;
 
 // one MD step; the first run of a session ('run 0') did the full setup
 void step(LAMMPS *lmp)
