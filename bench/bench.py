@@ -26,6 +26,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 INPUT = os.path.join(HERE, "in.bench")
+BRANCHING = os.path.join(HERE, "in.branching")
 
 # quoted in the issue for LAMMPS MACHDYN smd/tlsph on these machines, per core
 # (same kernel support, linear elastic); NOT measured by this harness
@@ -71,6 +72,7 @@ class Case:
         self.key, self.dim, self.n, self.np, self.nsteps = key, dim, n, np, nsteps
         self.grad, self.alpha, self.gamma = grad, alpha, gamma
         self.natoms = n ** dim
+        self.input = INPUT
         self.runs = []    # parsed logs, one per repeat
 
     def label(self):
@@ -101,6 +103,24 @@ class Case:
         return self.natoms * b["steps"] / seconds if b and seconds else None
 
 
+class BranchingCase(Case):
+    """The crack-branching plate (bench/in.branching), tlsph/damage or tlsph."""
+
+    def __init__(self, key, damage, np, nsteps):
+        super().__init__(key, 2, 0, np, nsteps)
+        self.damage = damage
+        self.natoms = 300 * 120    # 100 mm x 40 mm at dx = 0.333 mm
+        self.input = BRANCHING
+
+    def label(self):
+        return ("tlsph/damage + pre-crack + velocity filter" if self.damage
+                else "tlsph, same particles")
+
+    def varargs(self, nwarm):
+        return ["-var", "damage", str(self.damage), "-var", "nwarm", str(nwarm),
+                "-var", "nsteps", str(self.nsteps)]
+
+
 def make_cases(a):
     cases = []
     for dim, n, ns in ((2, a.n2, a.steps2), (3, a.n3, a.steps3)):
@@ -110,6 +130,10 @@ def make_cases(a):
         cases.append(Case(f"{dim}d-novisc", dim, n, 1, ns, alpha=0.0))
         cases.append(Case(f"{dim}d-nohg", dim, n, 1, ns, gamma=0.0))
         cases.append(Case(f"{dim}d-stress", dim, n, 1, ns, alpha=0.0, gamma=0.0))
+    for np in (1, 2):
+        for damage in (1, 0):
+            cases.append(BranchingCase(f"branch-{'damage' if damage else 'tlsph'}-np{np}",
+                                       damage, np, a.steps_branch))
     return cases
 
 
@@ -156,7 +180,7 @@ def parse_log(text):
 
 def run_case(case, a, rep):
     log = os.path.join(a.outdir, f"{case.key}.rep{rep}.log")
-    lmp = [a.lmp, "-in", INPUT, "-log", log, "-screen", "none"] + case.varargs(a.nwarm)
+    lmp = [a.lmp, "-in", case.input, "-log", log, "-screen", "none"] + case.varargs(a.nwarm)
     if case.np > 1:
         cmd = [a.mpirun, "--allow-run-as-root", "--bind-to", "none", "-np", str(case.np)] + lmp
     else:
@@ -413,6 +437,37 @@ def report(a, cases, probes, started, finished, uptime_before, uptime_after, tot
              f"{r(cpu[3], QUOTED['target'][3])} |")
     L.append("")
 
+    # 5. damage
+    L.append("## 5. Cost of the damage machinery (crack-branching plate, bench/in.branching)")
+    L.append("")
+    L.append("The plate of examples/crack-branching (36,000 particles, dx = 0.333 mm, 1 MPa "
+             "traction) without output: `tlsph/damage` with its pre-crack, fix "
+             "tlsph/velocity/filter and the damage compute, beside `tlsph` on the same "
+             "particles (no pre-crack, no filter). Timed: steps "
+             f"{a.nwarm}-{a.nwarm + a.steps_branch} (the deck's dt ~ 35 ns: 0-40 us covers "
+             "initiation, ~15 us, and 25 us of propagation). Extra cost = damage / tlsph - 1, "
+             "same ranks, same invocation.")
+    L.append("")
+    L.append("| case | ranks | steps | loop time [s] | particle-steps/s (wall) | CPU time/rank [s] "
+             "| per CPU-second | extra cost (wall) | extra cost (CPU) |")
+    L.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for np in (1, 2):
+        ref = by[f"branch-tlsph-np{np}"]
+        for key in (f"branch-tlsph-np{np}", f"branch-damage-np{np}"):
+            c = by[key]
+            b, cpu_s = c.best(), c.best_cpu()
+            if not b:
+                L.append(f"| {c.label()} | {np} | {c.nsteps} | failed | | | | | |")
+                continue
+            rb, rcpu = ref.best(), ref.best_cpu()
+            ew = f"{100 * (b['loop'] / rb['loop'] - 1):+.0f} %" if rb and c is not ref else "-"
+            ec = (f"{100 * (cpu_s / rcpu - 1):+.0f} %" if cpu_s and rcpu and c is not ref
+                  else "-")
+            L.append(f"| {c.label()} | {np} | {b['steps']} | {b['loop']:.3f} "
+                     f"| {fmt_rate(c.rate(b['loop']))} | {f'{cpu_s:.3f}' if cpu_s else 'n/a'} "
+                     f"| {fmt_rate(c.rate(cpu_s * np) if cpu_s else None)} | {ew} | {ec} |")
+    L.append("")
+
     # raw repeats
     L.append("## Raw repeats: loop time [s] (CPU use %, 1-min load average after the run)")
     L.append("")
@@ -452,16 +507,16 @@ def main():
     ap.add_argument("--outdir", default=os.path.join(HERE, "out"))
     ap.add_argument("--out", default=os.path.join(HERE, "results.md"))
     ap.add_argument("--probe", default=None, help="bench/memprobe.so (optional)")
-    ap.add_argument("--budget", type=float, default=float(os.environ.get("BENCH_BUDGET", 600)),
+    ap.add_argument("--budget", type=float, default=float(os.environ.get("BENCH_BUDGET", 900)),
                     help="seconds; no new repeat is started that would end past it (0: off)")
     ap.add_argument("--n2", type=int, default=190)
     ap.add_argument("--n3", type=int, default=34)
     a = ap.parse_args()
     if a.quick:
-        a.steps2, a.steps3, a.nwarm = 60, 10, 5
+        a.steps2, a.steps3, a.nwarm, a.steps_branch = 60, 10, 5, 100
         a.repeat = a.repeat or 1
     else:
-        a.steps2, a.steps3, a.nwarm = 300, 50, 10
+        a.steps2, a.steps3, a.nwarm, a.steps_branch = 300, 50, 10, 1150
         a.repeat = a.repeat or 3
     os.makedirs(a.outdir, exist_ok=True)
     if not os.access(a.lmp, os.X_OK):

@@ -212,6 +212,7 @@ void PairTLSPHDamage::init_style()
       stretch_down[a * ntp + b] = (s_c < 1.0) ? (1.0 - s_c) * (1.0 - s_c) : 0.0;
     }
   comm_forward = MAX(comm_forward, 1);
+  comm_reverse = MAX(comm_reverse, 1);
   nmax_d = 0;
 }
 
@@ -413,24 +414,60 @@ void PairTLSPHDamage::update_bonds()
   comm_stage = 1;
   comm->forward_comm_pair(this);
   comm_stage = 0;
+
+  // phi'_i > 0 exactly when an intact partner of i is damaged. Bonds are
+  // symmetric (both ends decide alike), so the damaged particles, usually a
+  // few, mark their intact partners -- ghosts included, whose marks the
+  // reverse communication adds to their owners -- and only the marked
+  // particles need the weighted mean: no pass over every bond.
+  double *mark = phis;    // ghost entries of phis are otherwise unused
+  const int nall = nlocal + atom->nghost;
+  for (int i = 0; i < nall; i++) mark[i] = 0.0;
   for (int i = 0; i < nlocal; i++) {
+    if (!(phi[i] > 0.0)) continue;
+    const BondCache *b = &cache[bond_start[i]];
+    for (int m = 0; m < nbond[i]; m++) mark[b[m].j] = 1.0;
+  }
+  comm_stage = 2;
+  comm->reverse_comm_pair(this);
+  comm_stage = 0;
+  for (int i = 0; i < nlocal; i++) {
+    if (nbond[i] == 0) {
+      phis[i] = phi[i];    // a free particle: its own damage (1 once it had bonds)
+      alphas[i] = (phis[i] > 0.0) ? alpha_d : alpha;
+      continue;
+    }
+    if (!(mark[i] > 0.0)) {
+      phis[i] = 0.0;    // no damaged intact partner
+      alphas[i] = alpha;
+      continue;
+    }
     const BondCache *b = &cache[bond_start[i]];
     const int n = nbond[i];
-    // the kernel values are needed only where a partner is damaged
     double num = 0.0, den = 0.0;
-    for (int m = 0; m < n; m++)
-      if (phi[b[m].j] > 0.0) num += phi[b[m].j] * kernel_value(b[m]);
-    if (num > 0.0)
-      for (int m = 0; m < n; m++) den += kernel_value(b[m]);
-    else if (n > 0)
-      den = 1.0;    // all partners undamaged: phi' = 0
+    for (int m = 0; m < n; m++) {
+      const double w = kernel_value(b[m]);
+      num += phi[b[m].j] * w;
+      den += w;
+    }
     // phi_i - sum_j (phi_i - phi_j) W_ij / sum_j W_ij, written as the W-weighted
     // mean of the partners' damage: the difference form leaves +-1e-17 where
     // it should be 0, and that would switch alpha_d on spuriously
-    phis[i] = (den > 0.0) ? num / den : phi[i];
+    phis[i] = (den > 0.0) ? num / den : 0.0;
     // adaptive viscosity (thesis Eq. 2.35)
     alphas[i] = (phis[i] > 0.0) ? alpha_d : alpha;
   }
+}
+
+int PairTLSPHDamage::pack_reverse_comm(int n, int first, double *buf)
+{
+  for (int i = 0; i < n; i++) buf[i] = phis[first + i];
+  return n;
+}
+
+void PairTLSPHDamage::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  for (int i = 0; i < n; i++) phis[list[i]] += buf[i];
 }
 
 int PairTLSPHDamage::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)

@@ -35,6 +35,8 @@ class PairTLSPHDamage : public PairTLSPH {
   void read_restart_settings(FILE *) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
   // read by compute tlsph/damage/atom and fix tlsph/velocity/filter
@@ -72,7 +74,7 @@ class PairTLSPHDamage : public PairTLSPH {
 
   int nmax_d;
   double *phi, *phis, *alphas;
-  int comm_stage;          // 0: packed rows (base), 1: damage phi
+  int comm_stage;          // forward: 0 packed rows (base), 1 damage phi; 2: reverse, marks
   bigint nbroken_local;    // bonds broken on this rank so far (from this end)
 
   void grow_damage();
