@@ -27,11 +27,13 @@ using namespace TLSPH;
 
 namespace {
 const char *const MATERIAL_KEYS = "E, nu, rho";
+const char *const ORTHO_KEYS = "E1, E2, E3, G12, G13, G23, nu12, nu13, nu23, rho, theta";
 }    // namespace
 
 PairTLSPH::PairTLSPH(LAMMPS *lmp) : Pair(lmp)
 {
   bonds = nullptr;
+  any_orthotropic = 0;
   set_defaults();
   ndegraded = 0;
   report_fallback = 1;
@@ -84,8 +86,9 @@ void PairTLSPH::allocate()
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++) setflag[i][j] = 1;
   memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
-  mat.assign(n + 1, Material{0, 0, 0, 0, 0, 0});
+  mat.assign(n + 1, Material{});
   pairmat.assign(n + 1, TLSPH::PairMaterial{0, 0, 0});
+  any_orthotropic = 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -165,26 +168,74 @@ void PairTLSPH::settings(int narg, char **arg)
 
 /* ----------------------------------------------------------------------
    pair_coeff I J E value nu value rho value      (inline, I and J ranges)
-   pair_coeff * * file.tlsph name1 name2 ...      (one name per atom type)
+   pair_coeff I J E1 v E2 v E3 v G12 v G13 v G23 v nu12 v nu13 v nu23 v
+                  rho v [theta v]                 (orthotropic ply)
+   pair_coeff * * file.tlsph name1 name2 ...      (one name per atom type,
+                                                   name@angle: a ply at angle)
 ------------------------------------------------------------------------- */
+
+namespace {
+// the orthotropic constants, in the order of TLSPH::OrthotropicConstants
+const char *const ORTHO_NAMES[9] = {"E1", "E2", "E3", "G12", "G13", "G23", "nu12", "nu13", "nu23"};
+
+int ortho_index(const std::string &key)
+{
+  for (int k = 0; k < 9; k++)
+    if (key == ORTHO_NAMES[k]) return k;
+  return -1;
+}
+
+bool is_material_keyword(const std::string &key)
+{
+  return key == "E" || key == "nu" || key == "rho" || key == "theta" || ortho_index(key) >= 0;
+}
+
+// keyword/value pairs: does any keyword make this an orthotropic material?
+bool has_orthotropic_key(const std::vector<std::string> &words)
+{
+  for (size_t m = 0; m < words.size(); m += 2)
+    if (words[m] == "theta" || ortho_index(words[m]) >= 0) return true;
+  return false;
+}
+}    // namespace
 
 void PairTLSPH::set_material(int type, const std::vector<std::string> &words,
                              const std::string &where)
 {
-  double E = -1.0, nu = -2.0, rho = -1.0;
-  bool hE = false, hnu = false, hrho = false;
   if (words.size() % 2)
     error->all(FLERR, "{}: material values come as keyword/value pairs ({}), got an odd count",
                where, MATERIAL_KEYS);
+  // one parse for the unknown keywords and the fracture values (material_key)
+  std::string iso_key, ortho_key;
+  for (size_t m = 0; m < words.size(); m += 2) {
+    const std::string &key = words[m];
+    const double v = utils::numeric(FLERR, words[m + 1].c_str(), false, lmp);
+    if (key == "E" || key == "nu") {
+      if (iso_key.empty()) iso_key = key;
+    } else if (key == "theta" || ortho_index(key) >= 0) {
+      if (ortho_key.empty()) ortho_key = key;
+    } else if (key != "rho" && !material_key(type, key, v, where))
+      error->all(FLERR, "{}: unknown material keyword '{}' (allowed: {} for an isotropic "
+                        "material; {} for an orthotropic ply{})", where, key, MATERIAL_KEYS,
+                 ORTHO_KEYS, extra_material_keys());
+  }
+  if (!iso_key.empty() && !ortho_key.empty())
+    error->all(FLERR, "{}: isotropic and orthotropic material keywords cannot be mixed (got '{}' "
+                      "and '{}'): give either E, nu, rho or E1, E2, E3, G12, G13, G23, nu12, "
+                      "nu13, nu23, rho [theta]", where, iso_key, ortho_key);
+  if (!ortho_key.empty()) {
+    set_orthotropic(type, words, where);
+    return;
+  }
+
+  double E = -1.0, nu = -2.0, rho = -1.0;
+  bool hE = false, hnu = false, hrho = false;
   for (size_t m = 0; m < words.size(); m += 2) {
     const std::string &key = words[m];
     const double v = utils::numeric(FLERR, words[m + 1].c_str(), false, lmp);
     if (key == "E") E = v, hE = true;
     else if (key == "nu") nu = v, hnu = true;
     else if (key == "rho") rho = v, hrho = true;
-    else if (!material_key(type, key, v, where))
-      error->all(FLERR, "{}: unknown material keyword '{}' (allowed: {}{})", where, key,
-                 MATERIAL_KEYS, extra_material_keys());
   }
   if (!hE) error->all(FLERR, "{}: missing material value 'E' (Young's modulus)", where);
   if (!hnu) error->all(FLERR, "{}: missing material value 'nu' (Poisson's ratio)", where);
@@ -195,14 +246,99 @@ void PairTLSPH::set_material(int type, const std::vector<std::string> &words,
   if (rho <= 0.0) error->all(FLERR, "{}: rho must be > 0, got {}", where, rho);
 
   Material &m = mat[type];
+  m = Material{};
+  m.orthotropic = 0;
   m.E = E;
   m.nu = nu;
   m.rho = rho;
   m.lambda = lame_lambda(E, nu);
   m.mu = lame_mu(E, nu);
   m.c0 = wave_speed(m.lambda, m.mu, rho);
-  pairmat[type] = PairMaterial{m.c0, m.rho, m.E};
+  m.E_hg = E;
+  pairmat[type] = PairMaterial{m.c0, m.rho, m.E_hg};
+  sync_laws();
   check_material(type, where);
+}
+
+/* An orthotropic ply (doc: "Orthotropic materials"): validated so that the
+   compliance is positive definite, i.e. the strain energy is positive for
+   every strain. */
+void PairTLSPH::set_orthotropic(int type, const std::vector<std::string> &words,
+                                const std::string &where)
+{
+  double k[9], rho = -1.0, theta = 0.0;
+  bool have[9] = {false, false, false, false, false, false, false, false, false}, hrho = false;
+  for (size_t m = 0; m < words.size(); m += 2) {
+    const std::string &key = words[m];
+    const double v = utils::numeric(FLERR, words[m + 1].c_str(), false, lmp);
+    const int idx = ortho_index(key);
+    if (idx >= 0) k[idx] = v, have[idx] = true;
+    else if (key == "rho") rho = v, hrho = true;
+    else if (key == "theta") theta = v;
+  }
+  std::string missing;
+  for (int n = 0; n < 9; n++)
+    if (!have[n]) missing += fmt::format("{}'{}'", missing.empty() ? "" : ", ", ORTHO_NAMES[n]);
+  if (!hrho) missing += fmt::format("{}'rho'", missing.empty() ? "" : ", ");
+  if (!missing.empty())
+    error->all(FLERR, "{}: missing orthotropic material value(s) {} (an orthotropic ply needs "
+                      "E1, E2, E3, G12, G13, G23, nu12, nu13, nu23 and rho; theta is optional, "
+                      "default 0)", where, missing);
+  for (int n = 0; n < 6; n++)
+    if (!(k[n] > 0.0)) error->all(FLERR, "{}: {} must be > 0, got {}", where, ORTHO_NAMES[n], k[n]);
+  if (!(rho > 0.0)) error->all(FLERR, "{}: rho must be > 0, got {}", where, rho);
+  if (!std::isfinite(theta))
+    error->all(FLERR, "{}: theta (fibre angle, degrees) must be finite, got {}", where, theta);
+  const OrthotropicConstants c{k[0], k[1], k[2], k[3], k[4], k[5], k[6], k[7], k[8]};
+  // |nu_ij| < sqrt(E_i / E_j): the 2x2 minors of the compliance (nu_ij nu_ji < 1)
+  const struct {
+    int nu, Ei, Ej;
+  } pairs[3] = {{6, 0, 1}, {7, 0, 2}, {8, 1, 2}};
+  for (const auto &p : pairs) {
+    const double bound = sqrt(k[p.Ei] / k[p.Ej]);
+    if (!(fabs(k[p.nu]) < bound))
+      error->all(FLERR, "{}: {} = {} is out of range: |{}| must be < sqrt({}/{}) = {:.6g} for a "
+                        "positive-definite compliance", where, ORTHO_NAMES[p.nu], k[p.nu],
+                 ORTHO_NAMES[p.nu], ORTHO_NAMES[p.Ei], ORTHO_NAMES[p.Ej], bound);
+  }
+  const double delta = orthotropic_delta(c);
+  if (!(delta > 0.0))
+    error->all(FLERR, "{}: the orthotropic constants give a compliance matrix that is not positive "
+                      "definite: 1 - nu12 nu21 - nu23 nu32 - nu31 nu13 - 2 nu21 nu32 nu13 = {:.6g} "
+                      "must be > 0 (nu_ji = nu_ij E_j/E_i)", where, delta);
+
+  Material &m = mat[type];
+  m = Material{};
+  m.orthotropic = 1;
+  m.rho = rho;
+  m.ortho = c;
+  m.theta = theta;
+  if (!make_orthotropic(c, theta, dim == 2 ? plane_stress : 0, m.ortho_law))
+    error->all(FLERR, "{}: the orthotropic compliance matrix cannot be inverted", where);
+  // rho c^2 of the fastest plane wave over all directions: independent of
+  // theta, so found in the material axes (which the search grid contains)
+  double Clocal[36];
+  orthotropic_stiffness_local(c, Clocal);
+  m.c0 = sqrt(max_acoustic_modulus(Clocal) / rho);
+  m.E_hg = voigt_young_modulus(m.ortho_law.C);
+  pairmat[type] = PairMaterial{m.c0, m.rho, m.E_hg};
+  sync_laws();
+  if (comm->me == 0)
+    utils::logmesg(lmp, "pair tlsph: type {} is an orthotropic ply at theta = {} degrees: wave "
+                        "speed c0 = {:.6g}, hourglass modulus (Voigt average) E_hg = {:.6g}\n",
+                   type, theta, m.c0, m.E_hg);
+  check_material(type, where);
+}
+
+/* the 2D mode of the orthotropic laws (settings may change after pair_coeff)
+   and whether the per-particle law test must be compiled into the step */
+void PairTLSPH::sync_laws()
+{
+  any_orthotropic = 0;
+  for (int t = 1; t < (int) mat.size(); t++) {
+    mat[t].ortho_law.plane_stress = (dim == 2) ? plane_stress : 0;
+    if (mat[t].orthotropic && mat[t].rho > 0.0) any_orthotropic = 1;
+  }
 }
 
 void PairTLSPH::coeff(int narg, char **arg)
@@ -215,12 +351,12 @@ void PairTLSPH::coeff(int narg, char **arg)
 
   const std::string first = arg[2];
   double dummy;
-  const bool inline_form = (first == "E" || first == "nu" || first == "rho" ||
-                            is_extra_material_key(first, dummy));
+  const bool inline_form = is_material_keyword(first) || is_extra_material_key(first, dummy);
   if (!inline_form) {
     if (strcmp(arg[0], "*") != 0 || strcmp(arg[1], "*") != 0)
       error->all(FLERR, "pair_coeff tlsph: the file form must be 'pair_coeff * * {} name1 ... "
-                        "name{}' (or give inline values: {})", first, ntypes, MATERIAL_KEYS);
+                        "name{}' (or give inline values: {}; or {})", first, ntypes, MATERIAL_KEYS,
+                 ORTHO_KEYS);
     if (narg != 3 + ntypes)
       error->all(FLERR, "pair_coeff tlsph: file '{}' needs one material name per atom type ({}), "
                         "got {}", first, ntypes, narg - 3);
@@ -262,6 +398,19 @@ static std::string find_material_file(const std::string &file)
 
 void PairTLSPH::read_material_file(const std::string &file, int ntypes, char **names)
 {
+  // a name may carry a ply angle, NAME@THETA (degrees): one file line then
+  // serves the plies of a laminate
+  std::vector<std::string> base(ntypes + 1), angle(ntypes + 1);
+  for (int t = 1; t <= ntypes; t++) {
+    const std::string name = names[t - 1];
+    const size_t at = name.find('@');
+    base[t] = name.substr(0, at);
+    if (at == std::string::npos) continue;
+    angle[t] = name.substr(at + 1);
+    if (!utils::is_double(angle[t]))
+      error->all(FLERR, "pair_coeff tlsph: '{}' (atom type {}): the ply angle after '@' must be a "
+                        "number (degrees), got '{}'", name, t, angle[t]);
+  }
   // every rank reads the (small) file; lines: name key value key value ...
   std::vector<std::vector<std::string>> found(ntypes + 1);
   std::vector<bool> have(ntypes + 1, false);
@@ -272,7 +421,7 @@ void PairTLSPH::read_material_file(const std::string &file, int ntypes, char **n
       std::vector<std::string> words = Tokenizer(line, " \t\n\r\f").as_vector();
       if (words.empty()) continue;
       for (int t = 1; t <= ntypes; t++) {
-        if (words[0] != names[t - 1]) continue;
+        if (words[0] != base[t]) continue;
         found[t].assign(words.begin() + 1, words.end());
         have[t] = true;
       }
@@ -282,7 +431,16 @@ void PairTLSPH::read_material_file(const std::string &file, int ntypes, char **n
     if (strcmp(names[t - 1], "NULL") == 0) continue;
     if (!have[t])
       error->all(FLERR, "pair_coeff tlsph: material '{}' (atom type {}) not found in file '{}'",
-                 names[t - 1], t, file);
+                 base[t], t, file);
+    if (!angle[t].empty()) {
+      if (!has_orthotropic_key(found[t]))
+        error->all(FLERR, "pair_coeff tlsph: '{}' (atom type {}): a ply angle '@{}' needs an "
+                          "orthotropic material, but '{}' in {} is isotropic (E, nu)",
+                   names[t - 1], t, angle[t], base[t], file);
+      // after the line's own values: replaces a theta given there
+      found[t].emplace_back("theta");
+      found[t].push_back(angle[t]);
+    }
     set_material(t, found[t], fmt::format("material '{}' in {}", names[t - 1], file));
     setflag[t][t] = 1;
   }
@@ -300,6 +458,8 @@ void PairTLSPH::init_style()
                       "re-issue pair_style after the dimension command", dim, domain->dimension);
   if (dim == 2 && domain->zperiodic == 0)
     error->all(FLERR, "pair tlsph in 2D needs a periodic z dimension (LAMMPS 2D convention)");
+  // pair_style may have been re-issued (plane strain/stress) after pair_coeff
+  sync_laws();
 
   // partners are found through global IDs: make sure an atom map exists
   if (atom->tag_enable == 0) error->all(FLERR, "pair tlsph requires atom IDs");
@@ -558,7 +718,7 @@ int PairTLSPH::correct_particle(int i, BondCache *b, int n, const double *vj)
    pass (1): F, stress, and the packed row the force pass reads
 ------------------------------------------------------------------------- */
 
-template <int DIM, int ORDER> void PairTLSPH::compute_deformation()
+template <int DIM, int ORDER, int LAWS> void PairTLSPH::compute_deformation()
 {
   const Rows x{atom->x};
   int *type = atom->type;
@@ -571,9 +731,13 @@ template <int DIM, int ORDER> void PairTLSPH::compute_deformation()
     double *Fi = F[i];
     TLSPH::deformation_gradient<DIM>(x, i, &cache[bond_start[i]], nbond[i], Fi);
     const Material &m = mat[type[i]];
-    const IsotropicSVK law{m.lambda, m.mu, DIM == 2 ? plane_stress : 0};
     double J, K[9];
-    psi[i] = stress_tensors(law, DIM, Fi, P[i], need_K ? K : nullptr, &J);
+    if (LAWS && m.orthotropic) {
+      psi[i] = stress_tensors(m.ortho_law, DIM, Fi, P[i], need_K ? K : nullptr, &J);
+    } else {
+      const IsotropicSVK law{m.lambda, m.mu, DIM == 2 ? plane_stress : 0};
+      psi[i] = stress_tensors(law, DIM, Fi, P[i], need_K ? K : nullptr, &J);
+    }
     if (!(J > 0.0) || !std::isfinite(psi[i]))
       error->one(FLERR, "pair tlsph: particle {} (type {}) has det(F) = {} at step {}: the "
                         "simulation is unstable (reduce the time step, e.g. fix tlsph/dt, or "
@@ -581,6 +745,13 @@ template <int DIM, int ORDER> void PairTLSPH::compute_deformation()
     pack_row<DIM, ORDER>(vfrac[i], P[i], Q[i], Fi, need_K ? K : nullptr,
                          alpha_atom ? alpha_atom[i] : alpha, sumg[i], pk[i], fown[i]);
   }
+}
+
+// a scene of isotropic types only runs the loop without the per-particle law test
+template <int DIM, int ORDER> void PairTLSPH::dispatch_deformation()
+{
+  if (any_orthotropic) compute_deformation<DIM, ORDER, 1>();
+  else compute_deformation<DIM, ORDER, 0>();
 }
 
 /* ----------------------------------------------------------------------
@@ -669,11 +840,11 @@ void PairTLSPH::compute(int eflag, int vflag)
   update_bonds();
 
   if (dim == 2) {
-    if (order == 1) compute_deformation<2, 1>();
-    else compute_deformation<2, 2>();
+    if (order == 1) dispatch_deformation<2, 1>();
+    else dispatch_deformation<2, 2>();
   } else {
-    if (order == 1) compute_deformation<3, 1>();
-    else compute_deformation<3, 2>();
+    if (order == 1) dispatch_deformation<3, 1>();
+    else dispatch_deformation<3, 2>();
   }
 
   comm->forward_comm_pair(this);
@@ -727,17 +898,21 @@ void PairTLSPH::unpack_forward_comm(int n, int first, double *buf)
 void PairTLSPH::cauchy_stress(int i, double *sigma) const
 {
   const Material &m = mat[atom->type[i]];
-  IsotropicSVK law{m.lambda, m.mu, dim == 2 ? plane_stress : 0};
-  double Fi[9], E[9], S[9], P[9];
-  mat_copy(F[i], Fi);
-  if (dim == 2) Fi[8] = 1.0;
-  green_lagrange(Fi, E);
-  law.stress(E, S);
-  if (dim == 2 && plane_stress) Fi[8] = sqrt(1.0 + 2.0 * E[8]);
-  mat_mul(Fi, S, P);
-  double J = mat_det(Fi);
-  mat_mult(P, Fi, sigma);    // P F^T
-  for (int k = 0; k < 9; k++) sigma[k] /= J;
+  // sigma = P F^T / J from the stored F, with the particle's own law
+  auto cauchy = [&](const auto &law) {
+    double Fi[9], E[9], S[9], P[9];
+    mat_copy(F[i], Fi);
+    if (dim == 2) Fi[8] = 1.0;
+    green_lagrange(Fi, E);
+    law.stress(E, S);
+    if (dim == 2 && plane_stress) Fi[8] = sqrt(1.0 + 2.0 * E[8]);
+    mat_mul(Fi, S, P);
+    const double J = mat_det(Fi);
+    mat_mult(P, Fi, sigma);    // P F^T
+    for (int k = 0; k < 9; k++) sigma[k] /= J;
+  };
+  if (m.orthotropic) cauchy(m.ortho_law);
+  else cauchy(IsotropicSVK{m.lambda, m.mu, dim == 2 ? plane_stress : 0});
 }
 
 void PairTLSPH::green_lagrange_strain(int i, double *E) const
@@ -747,23 +922,32 @@ void PairTLSPH::green_lagrange_strain(int i, double *E) const
   mat_copy(F[i], Fi);
   if (dim == 2) Fi[8] = 1.0;
   green_lagrange(Fi, E);
-  IsotropicSVK law{m.lambda, m.mu, dim == 2 ? plane_stress : 0};
-  law.stress(E, S);    // sets the plane-stress E33
+  // the law sets the plane-stress E33
+  if (m.orthotropic) m.ortho_law.stress(E, S);
+  else IsotropicSVK{m.lambda, m.mu, dim == 2 ? plane_stress : 0}.stress(E, S);
 }
 
 /* ---------------------------------------------------------------------- */
 
+/* per type: an int (0 no material, 1 isotropic, 2 orthotropic), then
+   E nu rho, or E1 E2 E3 G12 G13 G23 nu12 nu13 nu23 rho theta, then the
+   derived style's values; everything else is recomputed on reading */
 void PairTLSPH::write_restart(FILE *fp)
 {
   write_restart_settings(fp);
   for (int i = 1; i <= atom->ntypes; i++) {
-    const int has_material = (mat[i].rho > 0.0);
-    fwrite(&has_material, sizeof(int), 1, fp);
-    if (has_material) {
-      double v[3] = {mat[i].E, mat[i].nu, mat[i].rho};
+    const Material &m = mat[i];
+    const int kind = !(m.rho > 0.0) ? 0 : (m.orthotropic ? 2 : 1);
+    fwrite(&kind, sizeof(int), 1, fp);
+    if (kind == 1) {
+      double v[3] = {m.E, m.nu, m.rho};
       fwrite(v, sizeof(double), 3, fp);
-      write_material_extra(fp, i);
+    } else if (kind == 2) {
+      const OrthotropicConstants &k = m.ortho;
+      double v[11] = {k.E1, k.E2, k.E3, k.G12, k.G13, k.G23, k.nu12, k.nu13, k.nu23, m.rho, m.theta};
+      fwrite(v, sizeof(double), 11, fp);
     }
+    if (kind) write_material_extra(fp, i);
   }
 }
 
@@ -773,19 +957,28 @@ void PairTLSPH::read_restart(FILE *fp)
   allocate();
   const int me = comm->me;
   for (int i = 1; i <= atom->ntypes; i++) {
-    int has_material = 0;
-    if (me == 0) utils::sfread(FLERR, &has_material, sizeof(int), 1, fp, nullptr, error);
-    MPI_Bcast(&has_material, 1, MPI_INT, 0, world);
-    if (has_material) {
-      double v[3];
-      if (me == 0) utils::sfread(FLERR, v, sizeof(double), 3, fp, nullptr, error);
-      MPI_Bcast(v, 3, MPI_DOUBLE, 0, world);
-      read_material_extra(fp, i);
-      std::vector<std::string> words = {"E", fmt::format("{:.17g}", v[0]), "nu",
-                                        fmt::format("{:.17g}", v[1]), "rho",
-                                        fmt::format("{:.17g}", v[2])};
-      set_material(i, words, "restart file");
+    int kind = 0;
+    if (me == 0) utils::sfread(FLERR, &kind, sizeof(int), 1, fp, nullptr, error);
+    MPI_Bcast(&kind, 1, MPI_INT, 0, world);
+    if (kind != 0 && kind != 1 && kind != 2)
+      error->all(FLERR, "pair tlsph: the restart file holds an unknown material kind {} for type "
+                        "{} (written by another version?)", kind, i);
+    if (!kind) continue;
+    const int n = (kind == 1) ? 3 : 11;
+    double v[11];
+    if (me == 0) utils::sfread(FLERR, v, sizeof(double), n, fp, nullptr, error);
+    MPI_Bcast(v, n, MPI_DOUBLE, 0, world);
+    read_material_extra(fp, i);
+    // rebuilt through set_material: the same derived values as from pair_coeff
+    static const char *const iso_keys[3] = {"E", "nu", "rho"};
+    static const char *const ortho_keys[11] = {"E1",   "E2",   "E3",   "G12", "G13",  "G23",
+                                               "nu12", "nu13", "nu23", "rho", "theta"};
+    std::vector<std::string> words;
+    for (int k = 0; k < n; k++) {
+      words.emplace_back(kind == 1 ? iso_keys[k] : ortho_keys[k]);
+      words.push_back(fmt::format("{:.17g}", v[k]));
     }
+    set_material(i, words, "restart file");
   }
 }
 

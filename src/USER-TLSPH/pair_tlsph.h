@@ -32,9 +32,14 @@ namespace LAMMPS_NS {
 class PairTLSPH : public Pair {
  public:
   struct Material {
-    double E, nu, rho;    // as given
-    double lambda, mu;    // Lame constants
-    double c0;            // longitudinal wave speed sqrt((lambda + 2 mu)/rho)
+    int orthotropic;      // 0: isotropic (E, nu), 1: orthotropic ply (ortho, theta)
+    double E, nu, rho;    // as given (E, nu: isotropic only)
+    double lambda, mu;    // Lame constants (isotropic only)
+    double c0;            // fastest longitudinal wave speed: time step and viscosity
+    double E_hg;          // modulus of the hourglass term: E, or a ply's Voigt-average E
+    TLSPH::OrthotropicConstants ortho;    // as given (orthotropic only)
+    double theta;                         // fibre angle about +z from the x axis [degrees]
+    TLSPH::OrthotropicSVK ortho_law;      // C(theta) in global axes and the 2D mode
   };
 
   using BondCache = TLSPH::Bond;
@@ -84,7 +89,10 @@ class PairTLSPH : public Pair {
   // materials, per atom type
   std::vector<Material> mat;
   std::vector<TLSPH::PairMaterial> pairmat;    // what the force pass reads
+  int any_orthotropic;    // 1: some type is orthotropic (the per-particle law test is compiled in)
   void set_material(int type, const std::vector<std::string> &words, const std::string &where);
+  void set_orthotropic(int type, const std::vector<std::string> &words, const std::string &where);
+  void sync_laws();
 
   // hooks for derived styles (tlsph/damage): extra material keywords, their
   // check and restart data, the bond update of every step, and the policy of
@@ -136,7 +144,9 @@ class PairTLSPH : public Pair {
   int ncache_max, nstart_max;
   void build_bond_cache();
 
-  template <int DIM, int ORDER> void compute_deformation();
+  // LAWS 0: every type isotropic; 1: each particle picks its type's law
+  template <int DIM, int ORDER, int LAWS> void compute_deformation();
+  template <int DIM, int ORDER> void dispatch_deformation();
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, int SCATTER> void compute_forces();
   template <int DIM, int ORDER> void dispatch_forces(int hg, int visc, int vir, int newton);
 

@@ -134,7 +134,15 @@ void PairTLSPHDamage::check_material(int type, const std::string &where)
 {
   if ((int) Gc.size() <= type || (Gc[type] <= 0.0 && sc_given[type] <= 0.0))
     error->all(FLERR, "{}: pair tlsph/damage needs a fracture value for every material: Gc "
-                      "(fracture energy) or sc (critical stretch)", where);
+                      "(fracture energy) or sc (critical stretch){}", where,
+               mat[type].orthotropic ? "; an orthotropic ply needs sc" : "");
+  // s_c from G_c (thesis Eq. 2.28) is derived for an isotropic solid (mu, K);
+  // a ply's fracture energy depends on the direction, and no single pair of
+  // effective moduli would be more than a guess: ask for s_c itself
+  if (mat[type].orthotropic && Gc[type] > 0.0)
+    error->all(FLERR, "{}: pair tlsph/damage: Gc cannot be used for an orthotropic material (the "
+                      "critical stretch from Gc needs isotropic moduli): give its critical "
+                      "stretch 'sc' instead", where);
 }
 
 void PairTLSPHDamage::write_material_extra(FILE *fp, int type)
@@ -194,6 +202,7 @@ void PairTLSPHDamage::init_style()
     if (mat[t].rho <= 0.0) continue;
     if (sc_given[t] > 0.0) sc[t] = sc_given[t];
     else {
+      // isotropic only: check_material refuses Gc for an orthotropic type
       const double K = mat[t].lambda + 2.0 * mat[t].mu / 3.0;
       sc[t] = critical_stretch(Gc[t], mat[t].mu, K, h, dim);
     }

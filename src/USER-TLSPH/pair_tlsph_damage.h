@@ -53,7 +53,7 @@ class PairTLSPHDamage : public PairTLSPH {
 
  protected:
   bool material_key(int, const std::string &, double, const std::string &) override;
-  const char *extra_material_keys() const override { return ", and one of Gc, sc"; }
+  const char *extra_material_keys() const override { return "; and one of Gc, sc"; }
   bool is_extra_material_key(const std::string &key, double &) const override
   {
     return key == "Gc" || key == "sc";

@@ -217,9 +217,12 @@ TLSPH_INLINE void deformation_gradient(const Rows &x, int i, const Bond *b, int 
 
 /* From F: strain energy density (returned), the first Piola-Kirchhoff
    stress P = F S, and, if K is not null, K = J F^-T (viscosity mapping).
-   In 2D plane stress F33 is set from E33. *J receives det(F). */
-TLSPH_INLINE double stress_tensors(const IsotropicSVK &law, int dim, double *F, double *P,
-                                   double *K, double *J)
+   In 2D plane stress F33 is set from E33. *J receives det(F). Law is
+   IsotropicSVK or OrthotropicSVK (tlsph_material.h): the type is fixed at
+   compile time, so the isotropic loop carries no test for the other law. */
+template <class Law>
+TLSPH_INLINE double stress_tensors(const Law &law, int dim, double *F, double *P, double *K,
+                                   double *J)
 {
   double E[9], S[9];
   green_lagrange(F, E);
