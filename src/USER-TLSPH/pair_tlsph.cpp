@@ -411,20 +411,30 @@ void PairTLSPH::read_material_file(const std::string &file, int ntypes, char **n
       error->all(FLERR, "pair_coeff tlsph: '{}' (atom type {}): the ply angle after '@' must be a "
                         "number (degrees), got '{}'", name, t, angle[t]);
   }
-  // every rank reads the (small) file; lines: name key value key value ...
-  std::vector<std::vector<std::string>> found(ntypes + 1);
-  std::vector<bool> have(ntypes + 1, false);
-  {
+  // rank 0 reads the (small) file -- LAMMPS's reader refuses other ranks --
+  // and broadcasts its lines; lines: name key value key value ...
+  std::string text;
+  if (comm->me == 0) {
     PotentialFileReader reader(lmp, find_material_file(file), "tlsph material");
     char *line;
     while ((line = reader.next_line())) {
-      std::vector<std::string> words = Tokenizer(line, " \t\n\r\f").as_vector();
-      if (words.empty()) continue;
-      for (int t = 1; t <= ntypes; t++) {
-        if (words[0] != base[t]) continue;
-        found[t].assign(words.begin() + 1, words.end());
-        have[t] = true;
-      }
+      text += line;
+      text += '\n';
+    }
+  }
+  int len = text.size();
+  MPI_Bcast(&len, 1, MPI_INT, 0, world);
+  text.resize(len);
+  MPI_Bcast(&text[0], len, MPI_CHAR, 0, world);
+  std::vector<std::vector<std::string>> found(ntypes + 1);
+  std::vector<bool> have(ntypes + 1, false);
+  for (const auto &line : Tokenizer(text, "\n").as_vector()) {
+    std::vector<std::string> words = Tokenizer(line, " \t\r\f").as_vector();
+    if (words.empty()) continue;
+    for (int t = 1; t <= ntypes; t++) {
+      if (words[0] != base[t]) continue;
+      found[t].assign(words.begin() + 1, words.end());
+      have[t] = true;
     }
   }
   for (int t = 1; t <= ntypes; t++) {
