@@ -68,9 +68,10 @@ def loadavg():
 
 
 class Case:
-    def __init__(self, key, dim, n, np, nsteps, grad="quadratic", alpha=1.0, gamma=1.0):
+    def __init__(self, key, dim, n, np, nsteps, grad="quadratic", alpha=1.0, gamma=1.0,
+                 mat="iso"):
         self.key, self.dim, self.n, self.np, self.nsteps = key, dim, n, np, nsteps
-        self.grad, self.alpha, self.gamma = grad, alpha, gamma
+        self.grad, self.alpha, self.gamma, self.mat = grad, alpha, gamma, mat
         self.natoms = n ** dim
         self.input = INPUT
         self.runs = []    # parsed logs, one per repeat
@@ -79,12 +80,15 @@ class Case:
         terms = []
         terms.append("visc" if self.alpha > 0 else "no visc")
         terms.append("hg" if self.gamma != 0 else "no hg")
+        if self.mat != "iso":
+            terms.append("orthotropic law")
         return f"{self.dim}D {self.grad}, {', '.join(terms)}"
 
     def varargs(self, nwarm):
         return ["-var", "dim", str(self.dim), "-var", "n", str(self.n),
                 "-var", "grad", self.grad, "-var", "alpha", str(self.alpha),
-                "-var", "gamma", str(self.gamma), "-var", "nwarm", str(nwarm),
+                "-var", "gamma", str(self.gamma), "-var", "mat", self.mat,
+                "-var", "nwarm", str(nwarm),
                 "-var", "nsteps", str(self.nsteps)]
 
     def best(self):
@@ -130,6 +134,7 @@ def make_cases(a):
         cases.append(Case(f"{dim}d-novisc", dim, n, 1, ns, alpha=0.0))
         cases.append(Case(f"{dim}d-nohg", dim, n, 1, ns, gamma=0.0))
         cases.append(Case(f"{dim}d-stress", dim, n, 1, ns, alpha=0.0, gamma=0.0))
+        cases.append(Case(f"{dim}d-ortho", dim, n, 1, ns, mat="ortho"))
     for np in (1, 2):
         for damage in (1, 0):
             cases.append(BranchingCase(f"branch-{'damage' if damage else 'tlsph'}-np{np}",
@@ -437,8 +442,33 @@ def report(a, cases, probes, started, finished, uptime_before, uptime_after, tot
              f"{r(cpu[3], QUOTED['target'][3])} |")
     L.append("")
 
-    # 5. damage
-    L.append("## 5. Cost of the damage machinery (crack-branching plate, bench/in.branching)")
+    # 5. orthotropic law
+    L.append("## 5. Cost of the orthotropic law (1 rank, the blocks of section 1)")
+    L.append("")
+    L.append("The same steel block, its material given once as isotropic (E, nu) and once as an "
+             "orthotropic ply with the same constants (E1 = E2 = E3, G = E/2(1+nu)) at theta = "
+             "30 deg: the motion is the same, only the law's cost differs (6x6 stiffness "
+             "instead of two Lame constants, every particle testing its type's law).")
+    L.append("")
+    L.append("| case | loop time [s] | CPU time [s] | particle-steps per CPU-second "
+             "| extra cost (wall) | extra cost (CPU) |")
+    L.append("|---|---:|---:|---:|---:|---:|")
+    for dim in (2, 3):
+        ref_c, c = by[f"{dim}d-np1"], by[f"{dim}d-ortho"]
+        b, rb = c.best(), ref_c.best()
+        cpu_s, rcpu = c.best_cpu(), ref_c.best_cpu()
+        if not b or not rb:
+            L.append(f"| {dim}D orthotropic | failed | | | | |")
+            continue
+        L.append(f"| {dim}D isotropic | {rb['loop']:.3f} | {f'{rcpu:.3f}' if rcpu else 'n/a'} "
+                 f"| {fmt_rate(ref_c.rate(rcpu))} | - | - |")
+        L.append(f"| {dim}D orthotropic | {b['loop']:.3f} | {f'{cpu_s:.3f}' if cpu_s else 'n/a'} "
+                 f"| {fmt_rate(c.rate(cpu_s))} | {100 * (b['loop'] / rb['loop'] - 1):+.1f} % "
+                 f"| {(f'{100 * (cpu_s / rcpu - 1):+.1f} %') if cpu_s and rcpu else 'n/a'} |")
+    L.append("")
+
+    # 6. damage
+    L.append("## 6. Cost of the damage machinery (crack-branching plate, bench/in.branching)")
     L.append("")
     L.append("The plate of examples/crack-branching (36,000 particles, dx = 0.333 mm, 1 MPa "
              "traction) without output: `tlsph/damage` with its pre-crack, fix "
