@@ -25,7 +25,8 @@ command -v dpkg-query >/dev/null 2>&1 || die "this set-up needs Debian 12 (dpkg-
 
 PACKAGES=(lammps liblammps-dev python3-lammps libeigen3-dev libopenmpi-dev openmpi-bin
           libgtest-dev cmake ninja-build g++ make dpkg-dev python3-numpy python3-matplotlib
-          xz-utils)
+          xz-utils
+          calculix-ccx)  # ccx: the FE reference of the laminate examples (unittest/fe)
 
 is_installed() {
   [ "$(dpkg-query -W -f='${db:Status-Status}' "$1" 2>/dev/null || true)" = installed ]
