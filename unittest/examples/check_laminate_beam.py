@@ -35,7 +35,7 @@ def main():
     prefix = os.path.join(a.workdir, "beam")
     cmd = [a.lmp, "-in", os.path.join(a.example, "in.laminate-beam"), "-log", prefix + ".log",
            "-screen", "none", "-var", "out", prefix, "-var", "theta2", "90",
-           "-var", "dx", "0.00166666666666667", "-var", "tmax", "4"]
+           "-var", "dx", "0.00166666666666667", "-var", "tmax", "4", "-var", "tol", "1e-5"]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         print(p.stdout[-2000:], p.stderr[-2000:])
