@@ -12,6 +12,7 @@
 #include "force.h"
 #include "memory.h"
 #include "modify.h"
+#include "pair_tlsph_step.h"
 #include "potential_file_reader.h"
 #include "tlsph_particle.h"
 #include "tokenizer.h"
@@ -731,30 +732,20 @@ int PairTLSPH::correct_particle(int i, BondCache *b, int n, const double *vj)
 template <int DIM, int ORDER, int LAWS> void PairTLSPH::compute_deformation()
 {
   const Rows x{atom->x};
-  int *type = atom->type;
-  tagint *tag = atom->tag;
-  double *vfrac = atom->vfrac;
   const int nlocal = atom->nlocal;
   const bool need_K = viscosity_active();
-
   for (int i = 0; i < nlocal; i++) {
-    double *Fi = F[i];
-    TLSPH::deformation_gradient<DIM>(x, i, &cache[bond_start[i]], nbond[i], Fi);
-    const Material &m = mat[type[i]];
-    double J, K[9];
-    if (LAWS && m.orthotropic) {
-      psi[i] = stress_tensors(m.ortho_law, DIM, Fi, P[i], need_K ? K : nullptr, &J);
-    } else {
-      const IsotropicSVK law{m.lambda, m.mu, DIM == 2 ? plane_stress : 0};
-      psi[i] = stress_tensors(law, DIM, Fi, P[i], need_K ? K : nullptr, &J);
-    }
-    if (!(J > 0.0) || !std::isfinite(psi[i]))
-      error->one(FLERR, "pair tlsph: particle {} (type {}) has det(F) = {} at step {}: the "
-                        "simulation is unstable (reduce the time step, e.g. fix tlsph/dt, or "
-                        "raise alpha/gamma)", tag[i], type[i], J, update->ntimestep);
-    pack_row<DIM, ORDER>(vfrac[i], P[i], Q[i], Fi, need_K ? K : nullptr,
-                         alpha_atom ? alpha_atom[i] : alpha, sumg[i], pk[i], fown[i]);
+    TLSPH::deformation_gradient<DIM>(x, i, &cache[bond_start[i]], nbond[i], F[i]);
+    particle_stress<DIM, ORDER, LAWS>(i, need_K);
   }
+}
+
+void PairTLSPH::unstable_particle(int i, double J) const
+{
+  error->one(FLERR, "pair tlsph: particle {} (type {}) has det(F) = {} at step {}: the simulation "
+                    "is unstable (reduce the time step, e.g. fix tlsph/dt, or raise alpha/gamma)",
+             atom->tag[i], atom->type[i], J, update->ntimestep);
+  std::abort();    // not reached: error->one does not return
 }
 
 // a scene of isotropic types only runs the loop without the per-particle law test
@@ -825,6 +816,17 @@ void PairTLSPH::dispatch_forces(int hg, int visc, int vir, int newton)
   }
 }
 
+void PairTLSPH::deformation_pass()
+{
+  if (dim == 2) {
+    if (order == 1) dispatch_deformation<2, 1>();
+    else dispatch_deformation<2, 2>();
+  } else {
+    if (order == 1) dispatch_deformation<3, 1>();
+    else dispatch_deformation<3, 2>();
+  }
+}
+
 /* ---------------------------------------------------------------------- */
 
 void PairTLSPH::compute(int eflag, int vflag)
@@ -849,13 +851,8 @@ void PairTLSPH::compute(int eflag, int vflag)
   // tlsph/damage: break bonds, damage, per-particle viscosity (no-op here)
   update_bonds();
 
-  if (dim == 2) {
-    if (order == 1) dispatch_deformation<2, 1>();
-    else dispatch_deformation<2, 2>();
-  } else {
-    if (order == 1) dispatch_deformation<3, 1>();
-    else dispatch_deformation<3, 2>();
-  }
+  deformation_pass();
+  after_deformation();
 
   comm->forward_comm_pair(this);
 

@@ -95,8 +95,9 @@ class PairTLSPH : public Pair {
   void sync_laws();
 
   // hooks for derived styles (tlsph/damage): extra material keywords, their
-  // check and restart data, the bond update of every step, and the policy of
-  // the gradient correction after bonds break
+  // check and restart data, the bond update of every step (update_bonds,
+  // deformation_pass, after_deformation), and the policy of the gradient
+  // correction after bonds break
   // the fracture values of a material (Gc, sc) are read by tlsph/damage and
   // ignored here, so that one material file serves both styles
   virtual bool material_key(int, const std::string &key, double, const std::string &)
@@ -147,6 +148,14 @@ class PairTLSPH : public Pair {
   // LAWS 0: every type isotropic; 1: each particle picks its type's law
   template <int DIM, int ORDER, int LAWS> void compute_deformation();
   template <int DIM, int ORDER> void dispatch_deformation();
+  // pass (1) of the step; tlsph/damage overrides it (bond breaking fused in)
+  virtual void deformation_pass();
+  // between passes (1) and (2): tlsph/damage updates the damage and alpha_i
+  virtual void after_deformation() {}
+  // stress, energy density and packed row of local particle i from its F
+  // (pair_tlsph_step.h)
+  template <int DIM, int ORDER, int LAWS> void particle_stress(int i, bool need_K);
+  [[noreturn]] void unstable_particle(int i, double J) const;
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, int SCATTER> void compute_forces();
   template <int DIM, int ORDER> void dispatch_forces(int hg, int visc, int vir, int newton);
 

@@ -11,6 +11,7 @@
 #include "error.h"
 #include "fix_tlsph_bonds.h"
 #include "memory.h"
+#include "pair_tlsph_step.h"
 #include "tlsph_pair_terms.h"
 #include "update.h"
 
@@ -327,66 +328,126 @@ void PairTLSPHDamage::recorrect(int i)
   correct_particle(i, b, n, vj.data());
 }
 
-/* Break every intact bond of the local particles whose stretch has reached
-   s_c. Both ends compute the same stretch from the same positions (ghosts are
-   current at this point), so both drop the bond. */
-template <int DIM> void PairTLSPHDamage::break_bonds()
+/* Pass (1) with the stretch criterion fused in: for each local particle,
+   every intact bond whose stretch has reached s_c is broken before it would
+   enter F_i, then F_i and the stress follow from the bonds left. Both ends
+   of a bond compute the same stretch from the same positions (ghosts are
+   current at this point), so both drop it. One pass over the bond cache
+   instead of a breaking pass and a deformation pass. */
+template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS>
+void PairTLSPHDamage::deform_and_break()
 {
   double **x = atom->x;
   int *type = atom->type;
   const int nlocal = atom->nlocal;
   const double *up = stretch_up.data(), *down = stretch_down.data();
   const int ntp = atom->ntypes + 1;
+  // PAIRS 0: one critical stretch for every pair of types (one limit)
+  const double up0 = stretch_up[ntp + 1] * (1.0 - 1.0e-10);
+  const double down0 = stretch_down[ntp + 1] * (1.0 + 1.0e-10);
+  const bool need_K = viscosity_active();
   for (int i = 0; i < nlocal; i++) {
     BondCache *b = &cache[bond_start[i]];
     int n = nbond[i];
     const int ti = type[i] * ntp;
+    const double *xi = x[i];
+    double *Fi = F[i];
+    mat_identity(Fi);
     bool changed = false;
     for (int m = 0; m < n;) {
       const int j = b[m].j;
+      const double *xj = x[j];
       // s = (r - r0)/r0 >= s_c  <=>  r^2 >= r0^2 (1 + s_c)^2 (and, with the
       // absolute criterion, s <= -s_c  <=>  r^2 <= r0^2 (1 - s_c)^2): a cheap
       // filter without square roots; only bonds within round-off of the limit
       // or beyond it are decided with the stretch itself, as documented
-      double r2 = 0.0, r02 = 0.0;
+      double du[3], r2 = 0.0, r02 = 0.0;
       for (int d = 0; d < DIM; d++) {
-        const double dx = x[j][d] - x[i][d];
+        const double dx = xj[d] - xi[d];
+        du[d] = dx - b[m].X[d];
         r2 += dx * dx;
         r02 += b[m].X[d] * b[m].X[d];
       }
-      const int tt = ti + type[j];
-      bool broken = false;
-      if (r2 >= r02 * up[tt] * (1.0 - 1.0e-10) ||
-          (absolute && r2 <= r02 * down[tt] * (1.0 + 1.0e-10))) {
+      const double lim_up = PAIRS ? up[ti + type[j]] * (1.0 - 1.0e-10) : up0;
+      bool suspect = r2 >= r02 * lim_up;
+      if (ABS) suspect = suspect || r2 <= r02 * (PAIRS ? down[ti + type[j]] * (1.0 + 1.0e-10) : down0);
+      if (suspect) {
         const double r0 = sqrt(r02);
         double s = (sqrt(r2) - r0) / r0;
-        if (absolute) s = fabs(s);
-        broken = s >= MIN(sc[type[i]], sc[type[j]]);
+        if (ABS) s = fabs(s);
+        if (s >= MIN(sc[type[i]], sc[type[j]])) {
+          bonds->state[i][b[m].k] = FixTLSPHBonds::BROKEN;
+          nbroken_local++;
+          // move the bond behind the intact ones (it stays in the segment:
+          // the 'setup' policy keeps it in the correction); the bond moved
+          // into slot m is examined next
+          if (!rebuild)
+            for (int d = 0; d < 3; d++) sumg[i][d] -= b[m].g[d];
+          BondCache tmp = b[m];
+          b[m] = b[n - 1];
+          b[n - 1] = tmp;
+          n--;
+          changed = true;
+          continue;
+        }
       }
-      if (broken) {
-        bonds->state[i][b[m].k] = FixTLSPHBonds::BROKEN;
-        nbroken_local++;
-        // move the bond behind the intact ones (it stays in the segment: the
-        // 'setup' policy keeps it in the correction)
-        if (!rebuild)
-          for (int d = 0; d < 3; d++) sumg[i][d] -= b[m].g[d];
-        BondCache tmp = b[m];
-        b[m] = b[n - 1];
-        b[n - 1] = tmp;
-        n--;
-        changed = true;
-      } else
-        m++;
+      for (int r = 0; r < DIM; r++)
+        for (int cc = 0; cc < DIM; cc++) Fi[3 * r + cc] += du[r] * b[m].g[cc];
+      m++;
     }
     if (changed) {
       nbond[i] = n;
-      if (rebuild) recorrect(i);
+      if (rebuild) {
+        // the corrected gradients changed: F again from the rebuilt ones
+        recorrect(i);
+        const struct {
+          double **p;
+          const double *operator()(int k) const { return p[k]; }
+        } rows{x};
+        TLSPH::deformation_gradient<DIM>(rows, i, b, n, Fi);
+      }
+    }
+    particle_stress<DIM, ORDER, LAWS>(i, need_K);
+  }
+}
+
+template <int DIM, int ORDER, int LAWS> void PairTLSPHDamage::dispatch_break()
+{
+  // one limit for all type pairs unless the types' critical stretches differ
+  bool pairs = false;
+  for (int t = 2; t <= atom->ntypes; t++) pairs = pairs || (sc[t] != sc[1]);
+  if (absolute) {
+    if (pairs) deform_and_break<DIM, ORDER, LAWS, 1, 1>();
+    else deform_and_break<DIM, ORDER, LAWS, 1, 0>();
+  } else {
+    if (pairs) deform_and_break<DIM, ORDER, LAWS, 0, 1>();
+    else deform_and_break<DIM, ORDER, LAWS, 0, 0>();
+  }
+}
+
+void PairTLSPHDamage::deformation_pass()
+{
+  if (dim == 2) {
+    if (order == 1) {
+      if (any_orthotropic) dispatch_break<2, 1, 1>();
+      else dispatch_break<2, 1, 0>();
+    } else {
+      if (any_orthotropic) dispatch_break<2, 2, 1>();
+      else dispatch_break<2, 2, 0>();
+    }
+  } else {
+    if (order == 1) {
+      if (any_orthotropic) dispatch_break<3, 1, 1>();
+      else dispatch_break<3, 1, 0>();
+    } else {
+      if (any_orthotropic) dispatch_break<3, 2, 1>();
+      else dispatch_break<3, 2, 0>();
     }
   }
 }
 
 /* ----------------------------------------------------------------------
-   every step, before F: break bonds, update damage and the viscosity
+   every step, before the deformation pass: the pre-cracks once
 ------------------------------------------------------------------------- */
 
 void PairTLSPHDamage::update_bonds()
@@ -400,14 +461,19 @@ void PairTLSPHDamage::update_bonds()
       for (int i = 0; i < atom->nlocal; i++) bonds->frozen[i][0] = 0.0;
     build_bond_cache();
   }
+}
 
+/* ----------------------------------------------------------------------
+   after the deformation pass (this step's bonds are decided): damage, the
+   smoothed damage and the viscosity coefficient of every local particle,
+   which then goes into its packed row
+------------------------------------------------------------------------- */
+
+void PairTLSPHDamage::after_deformation()
+{
   const int nlocal = atom->nlocal;
 
-  // (1) stretch criterion (break_bonds)
-  if (dim == 2) break_bonds<2>();
-  else break_bonds<3>();
-
-  // (2) damage phi = 1 - intact/initial (thesis Eq. 2.33), then its smoothed
+  // damage phi = 1 - intact/initial (thesis Eq. 2.33), then its smoothed
   // form phi' (Eq. 2.34) over the intact bonds: a broken partner "no longer
   // contributes to the kernel interpolation of any field variable on i"
   // (thesis 2.3.1.1). Not over the cached segment: which broken bonds it
@@ -440,31 +506,30 @@ void PairTLSPHDamage::update_bonds()
   comm_stage = 2;
   comm->reverse_comm_pair(this);
   comm_stage = 0;
+  // alpha_i is the last entry of the packed row (TLSPH::Packed::A)
+  const int ia = packed_size() - 1;
   for (int i = 0; i < nlocal; i++) {
     if (nbond[i] == 0) {
       phis[i] = phi[i];    // a free particle: its own damage (1 once it had bonds)
-      alphas[i] = (phis[i] > 0.0) ? alpha_d : alpha;
-      continue;
-    }
-    if (!(mark[i] > 0.0)) {
+    } else if (!(mark[i] > 0.0)) {
       phis[i] = 0.0;    // no damaged intact partner
-      alphas[i] = alpha;
-      continue;
+    } else {
+      const BondCache *b = &cache[bond_start[i]];
+      const int n = nbond[i];
+      double num = 0.0, den = 0.0;
+      for (int m = 0; m < n; m++) {
+        const double w = kernel_value(b[m]);
+        num += phi[b[m].j] * w;
+        den += w;
+      }
+      // phi_i - sum_j (phi_i - phi_j) W_ij / sum_j W_ij, written as the
+      // W-weighted mean of the partners' damage: the difference form leaves
+      // +-1e-17 where it should be 0, and that would switch alpha_d on
+      phis[i] = (den > 0.0) ? num / den : 0.0;
     }
-    const BondCache *b = &cache[bond_start[i]];
-    const int n = nbond[i];
-    double num = 0.0, den = 0.0;
-    for (int m = 0; m < n; m++) {
-      const double w = kernel_value(b[m]);
-      num += phi[b[m].j] * w;
-      den += w;
-    }
-    // phi_i - sum_j (phi_i - phi_j) W_ij / sum_j W_ij, written as the W-weighted
-    // mean of the partners' damage: the difference form leaves +-1e-17 where
-    // it should be 0, and that would switch alpha_d on spuriously
-    phis[i] = (den > 0.0) ? num / den : 0.0;
     // adaptive viscosity (thesis Eq. 2.35)
     alphas[i] = (phis[i] > 0.0) ? alpha_d : alpha;
+    pk[i][ia] = alphas[i];
   }
 }
 

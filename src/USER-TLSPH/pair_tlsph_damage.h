@@ -62,6 +62,8 @@ class PairTLSPHDamage : public PairTLSPH {
   void write_material_extra(FILE *, int) override;
   void read_material_extra(FILE *, int) override;
   void update_bonds() override;
+  void deformation_pass() override;
+  void after_deformation() override;
   bool viscosity_active() const override { return alpha > 0.0 || beta > 0.0 || alpha_d > 0.0; }
 
  private:
@@ -81,7 +83,9 @@ class PairTLSPHDamage : public PairTLSPH {
   void apply_precracks();
   bool crosses_crack(const double *A, const double *B) const;
   void recorrect(int i);
-  template <int DIM> void break_bonds();
+  // ABS: absolute criterion; PAIRS: per-type-pair limits (types differ in s_c)
+  template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS> void deform_and_break();
+  template <int DIM, int ORDER, int LAWS> void dispatch_break();
 };
 
 }    // namespace LAMMPS_NS

@@ -14,8 +14,15 @@
 
 #if defined(TLSPH_KOKKOS) && defined(KOKKOS_INLINE_FUNCTION)
 #define TLSPH_INLINE KOKKOS_INLINE_FUNCTION
+#define TLSPH_FORCE_INLINE KOKKOS_FORCEINLINE_FUNCTION
 #else
 #define TLSPH_INLINE inline
+// per-particle kernels of the step that GCC would otherwise call out of line
+#if defined(__GNUC__)
+#define TLSPH_FORCE_INLINE inline __attribute__((always_inline))
+#else
+#define TLSPH_FORCE_INLINE inline
+#endif
 #endif
 
 namespace TLSPH {

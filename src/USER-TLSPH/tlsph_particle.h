@@ -221,7 +221,7 @@ TLSPH_INLINE void deformation_gradient(const Rows &x, int i, const Bond *b, int 
    IsotropicSVK or OrthotropicSVK (tlsph_material.h): the type is fixed at
    compile time, so the isotropic loop carries no test for the other law. */
 template <class Law>
-TLSPH_INLINE double stress_tensors(const Law &law, int dim, double *F, double *P, double *K,
+TLSPH_FORCE_INLINE double stress_tensors(const Law &law, int dim, double *F, double *P, double *K,
                                    double *J)
 {
   double E[9], S[9];
