@@ -32,6 +32,9 @@ import os
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import verdict  # noqa: E402
+
 RAYLEIGH = 2803.0
 
 
@@ -96,12 +99,7 @@ def main():
         ("no cracked particle under the impactor", ri["n_cracked_max"] == 0),
         ("energy never above the impactor's work by > 1 %", excess <= 0.01),
     ]
-    ok = True
-    for name, good in checks:
-        print(("ok    " if good else "FAIL  ") + name)
-        ok &= bool(good)
-    print("PASSED" if ok else "FAILED")
-    return 0 if ok else 1
+    return verdict(checks)
 
 
 if __name__ == "__main__":
