@@ -38,6 +38,10 @@ def analyse(prefix):
     tip = free & (X[:, 0] > L - dx)
     patch = tip & (np.abs(X[:, 1] - b / 2) < 0.001) & (np.abs(X[:, 2] - t / 2) < 0.001)
     mid = tip & (np.abs(X[:, 1] - b / 2) < dx)
+    # the two central layers of the outermost tip columns (twist of the tip)
+    zc = np.abs(X[:, 2] - t / 2) < dx
+    yl = tip & zc & (X[:, 1] < X[tip, 1].min() + 1e-9)
+    yh = tip & zc & (X[:, 1] > X[tip, 1].max() - 1e-9)
     sel = tip | patch | mid
     ufe = np.zeros_like(u)
     ufe[sel] = lc.ref.sample(case, X[sel])
@@ -46,6 +50,12 @@ def analyse(prefix):
     for key, m in (("u3_patch", patch), ("u3_tip", tip)):
         out[key] = {"tlsph": float(u[m, 2].mean()), "fe": float(ufe[m, 2].mean())}
         out[key]["err"] = lc.rel(out[key]["tlsph"], out[key]["fe"])
+    out["u2_patch"] = {"tlsph": float(u[patch, 1].mean()), "fe": float(ufe[patch, 1].mean())}
+    out["u2_patch"]["err"] = lc.rel(out["u2_patch"]["tlsph"], out["u2_patch"]["fe"])
+    span = X[yh, 1].mean() - X[yl, 1].mean()
+    out["twist"] = {"tlsph": float((u[yh, 2].mean() - u[yl, 2].mean()) / span),
+                    "fe": float((ufe[yh, 2].mean() - ufe[yl, 2].mean()) / span)}
+    out["twist"]["err"] = lc.rel(out["twist"]["tlsph"], out["twist"]["fe"])
     zs = np.unique(np.round(X[mid, 2], 9))
     prof = []
     for z in zs:
@@ -84,6 +94,14 @@ def report(out, label):
                       ("u1_bottom", "u1, tip layer, bottom particle [mm]")):
         q = out[key]
         L.append(f"{name:34s} {1e3 * q['tlsph']:14.5f} {1e3 * q['fe']:14.5f} {lc.pct(q['err']):>9s}")
+    if abs(out["u2_patch"]["fe"]) > 1e-3 * abs(out["u3_patch"]["fe"]):
+        # [0/45]: the lateral deflection and the twist of the bend-twist coupling
+        q = out["u2_patch"]
+        L.append(f"{'u2, mean of the loaded patch [mm]':34s} {1e3 * q['tlsph']:14.5f} "
+                 f"{1e3 * q['fe']:14.5f} {lc.pct(q['err']):>9s}")
+        q = out["twist"]
+        L.append(f"{'tip twist du3/dy (outer columns) [mrad]':34s} {1e3 * q['tlsph']:14.5f} "
+                 f"{1e3 * q['fe']:14.5f} {lc.pct(q['err']):>9s}")
     L.append(f"{'u1 profile, max|diff|/max|FE|':34s} {'':14s} {'':14s} "
              f"{100 * out['u1_profile']['err']:8.2f} %")
     L.append("")

@@ -6,7 +6,8 @@
 All at the particles' reference positions X (the FE field sampled at exactly
 those points, examples/laminate-common/laminate_reference.py):
   top-layer extrema   max and min of u1, u2, u3 over the top particle layer
-                      (z = t - dx/2) inside the plate -- the thesis's Table 3.7
+                      (z = t - dx/2 for cell-centre layers, higher with
+                      zplace moment) inside the plate -- the thesis's Table 3.7
                       stations, at the particles' depth
   point A             x = y = 75 mm: mean of the 4 particle columns around it
                       (bilinear interpolation at A on the lattice), per layer:
@@ -43,6 +44,7 @@ def analyse(prefix):
     ufe = np.zeros_like(u)
     ufe[sel] = lc.ref.sample(CASE, X[sel])
     out = {"case": CASE, "dx": dx, "particles": int(len(ids)), "n_top": int(top.sum()),
+           "z_top": float(np.median(X[top, 2])),
            "gamma": float(head.get("gamma", "nan")), "q": float(head.get("q", "nan"))}
     for k, name in enumerate(("u1", "u2", "u3")):
         ut, uf = u[top, k], ufe[top, k]
@@ -81,7 +83,7 @@ def report(out, label):
          f"(net force {out.get('fnet') if out.get('fnet') is not None else float('nan'):.2g}), "
          f"E_hourglass/E_strain {out.get('E_hg_over_E_strain') or float('nan'):.2e}",
          "",
-         "top particle layer (z = t - dx/2), x 1e-4 m:",
+         f"top particle layer (z = {1e3 * out['z_top']:.3f} mm), x 1e-4 m:",
          f"{'':4s} {'TLSPH max':>10s} {'TLSPH min':>10s} {'FE max':>10s} {'FE min':>10s} "
          f"{'error of the extreme':>21s}"]
     for name in ("u1", "u2", "u3"):
