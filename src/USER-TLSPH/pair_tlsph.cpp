@@ -848,9 +848,9 @@ void PairTLSPH::compute(int eflag, int vflag)
     }
   }
 
-  // tlsph/damage: break bonds, damage, per-particle viscosity (no-op here)
+  // (1) F and stress; tlsph/damage applies its pre-cracks first, breaks bonds
+  // inside the pass and then updates the damage and alpha_i (hooks, no-ops here)
   update_bonds();
-
   deformation_pass();
   after_deformation();
 
