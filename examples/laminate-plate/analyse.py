@@ -48,8 +48,10 @@ def analyse(prefix):
            "gamma": float(head.get("gamma", "nan")), "q": float(head.get("q", "nan"))}
     for k, name in enumerate(("u1", "u2", "u3")):
         ut, uf = u[top, k], ufe[top, k]
+        # the FE field's largest value and TLSPH's largest of the same sign
+        # (u1 and u2 are antisymmetric: max = -min, either may come first)
         big_f = uf[np.argmax(np.abs(uf))]
-        big_t = ut[np.argmax(np.abs(ut))]
+        big_t = ut.max() if big_f > 0 else ut.min()
         out[name] = {"tlsph_max": float(ut.max()), "tlsph_min": float(ut.min()),
                      "fe_max": float(uf.max()), "fe_min": float(uf.min()),
                      "tlsph_extreme": float(big_t), "fe_extreme": float(big_f),
