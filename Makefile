@@ -19,7 +19,7 @@ export TLSPH_PYTHON = $(PYTHON)
 export LMP_TLSPH = $(BUILD_ABS)/lmp_tlsph
 export TLSPH_PLUGIN = $(BUILD_ABS)/tlsphplugin.so
 
-.PHONY: all setup configure build run test bench clean
+.PHONY: all setup configure build run test bench bench-instructions clean
 
 all: build
 
@@ -53,6 +53,11 @@ test: build
 bench: build
 	@if [ -f bench/run.sh ]; then bash bench/run.sh; \
 	else echo "make bench: bench/run.sh not present yet" >&2; exit 1; fi
+
+# instruction counts per step (valgrind callgrind): the cost comparisons that
+# load on a shared machine blurs (doc/bench.md, "Instruction counts")
+bench-instructions: build
+	bash bench/instructions.sh
 
 clean:
 	rm -rf "$(BUILD)"
