@@ -2,7 +2,13 @@
 """Summary of a crack-branching run: the crack measured by tools/crack_measure.py
 next to the thesis's numbers and the acceptance criteria of the benchmark.
 
-  summarise.py PREFIX [--window S] [--threshold PHI]
+  summarise.py PREFIX [--window S] [--threshold PHI] [--dx DX]
+
+--dx DX (the run's particle spacing, m): the measurement lengths that the tool
+counts in spacings (initiation length 3, branch gap 3, branch persistence 10)
+are scaled so that they stay the physical lengths they are at the deck's
+dx = 0.333 mm (1, 1 and 3.33 mm); for runs at other spacings.  Without it the
+tool's defaults (in units of the spacing it measures from the dump) apply.
 
 Reads PREFIX.dump and PREFIX.log; writes PREFIX.crack.{json,csv,txt} (the tool's
 output), PREFIX.speed.png (tip speed, Rayleigh speed drawn), PREFIX.montage.png
@@ -20,6 +26,7 @@ sys.path.insert(0, os.path.join(here, '..', 'common'))
 import crack_measure as cm  # noqa: E402
 
 RAYLEIGH = 2125.0      # m/s, plane strain (REFERENCE.md)
+DX_DECK = 0.1 / 300    # m, the deck's spacing
 THESIS = dict(initiation=8e-6, branching=33e-6, edge=56e-6)
 
 
@@ -32,13 +39,21 @@ def main():
     ap.add_argument('--window', type=float, default=3e-6)
     ap.add_argument('--threshold', type=float, default=0.3)
     ap.add_argument('--label', default='')
+    ap.add_argument('--dx', type=float, default=None)
     a = ap.parse_args()
     p = a.prefix
     info = log_info(p + '.log')
+    lengths = {}
+    if a.dx:
+        k = DX_DECK / a.dx
+        lengths = dict(dx=a.dx, init_length=cm.DEFAULTS['init_length'] * k,
+                       gap=cm.DEFAULTS['gap'] * k,
+                       branch_min_length=cm.DEFAULTS['branch_min_length'] * k)
     res = cm.analyse(cm.read_dump(p + '.dump'), [cm.Seed('crack', 0.05, 0.02, 0.0)],
                      target_edges={'crack': 'xmax'}, threshold=a.threshold, window=a.window,
                      tip='projection',
-                     regions={'top_row': (-1, 1, 0.0395, 1), 'bottom_row': (-1, 1, -1, 0.0005)})
+                     regions={'top_row': (-1, 1, 0.0395, 1), 'bottom_row': (-1, 1, -1, 0.0005)},
+                     **lengths)
     cm.write_outputs(res, p + '.crack')
     cm.plot_speed(res, p + '.speed.png', rayleigh=RAYLEIGH,
                   title=f'crack branching {a.label}'.strip())
@@ -87,6 +102,10 @@ def main():
                  f"(shared machine)")
     if 'error' in info:
         lines.append(f"LAMMPS STOPPED: {info['error']}")
+    if lengths:
+        lines.append(f"lengths at dx = {a.dx * 1e3:.4g} mm: initiation {lengths['init_length']:.3g} dx, "
+                     f"branch gap {lengths['gap']:.3g} dx, persistence {lengths['branch_min_length']:.3g} dx "
+                     f"(= 1, 1, 3.33 mm)")
     lines.append(f"crack_measure: phi >= {a.threshold}, speed window {a.window * 1e6:g} us, "
                  f"dump every {(res['time'][2] - res['time'][1]) * 1e6:.2f} us")
     lines.append('')
