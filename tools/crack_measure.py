@@ -905,6 +905,13 @@ def selftest(verbose=True):
     check(c['branches_max_persistent'] == 1 and c['branching_time'] is None, 'straight: no branching')
     check(c['target_reached_time'] is not None and abs(c['target_reached_time'] - (t0 + 0.0795 / v)) <= 2e-6,
           f"straight: reaches xmax at {_fmt(c['target_reached_time'], 1e6)} us (expect ~{(t0 + 0.0795 / v) * 1e6:.1f})")
+    # 1b. the same dump with the lengths given in other units of dx (as
+    # examples/crack-branching/summarise.py --dx does): initiation at 6 dx
+    res6 = analyse(read_dump(os.path.join(tmp, 'dump.straight')), [Seed('s', *seed, 0.0)],
+                   init_length=6.0)
+    t6 = res6['cracks']['s']['initiation_time']
+    check(t6 is not None and abs(t6 - (t0 + 6 * dx / v)) <= 1.01e-6,
+          f"straight, init_length 6: initiation {_fmt(t6, 1e6)} us (expect {(t0 + 6 * dx / v) * 1e6:.2f} +- 1)")
     # 2. 60-degree crack
     a = math.radians(60)
     end = seed + 0.0299 / math.sin(a) * np.array([math.cos(a), math.sin(a)])
