@@ -40,6 +40,7 @@ def main():
     prefix = os.path.join(a.workdir, "beam")
     cmd = [a.lmp, "-in", os.path.join(a.example, "in.laminate-beam"), "-log", prefix + ".log",
            "-screen", "none", "-var", "out", prefix, "-var", "theta2", "90",
+           "-var", "common", os.path.join(a.example, "..", "laminate-common"),
            "-var", "dx", "0.00166666666666667", "-var", "tmax", "4", "-var", "tol", "1e-5"]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
