@@ -19,14 +19,13 @@ checks what the deck prints of them:
 Prints PASSED or FAILED (ctest matches PASSED) and exits 0 / 1.
 """
 
-import argparse
 import os
 import re
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import verdict  # noqa: E402
+from checks import example_args, verdict  # noqa: E402
 
 SIGMA0, LX, DX = 1.0e6, 0.1, 1.0e-3
 
@@ -41,12 +40,7 @@ def run(a, prefix, *extra):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--lmp", required=True)
-    ap.add_argument("--example", required=True, help="examples/crack-branching")
-    ap.add_argument("--workdir", required=True)
-    a = ap.parse_args()
-    os.makedirs(a.workdir, exist_ok=True)
+    a = example_args("crack-branching")
     rc, log = run(a, os.path.join(a.workdir, "consistent"), "-var", "load", "consistent")
     m = re.search(r"^consistent load: resultant top (\S+) N, bottom (\S+) N, x (\S+) N", log, re.M)
     if rc != 0 or not m or "Total wall time" not in log:

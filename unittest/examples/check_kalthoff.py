@@ -26,27 +26,22 @@ Bands, from the measured resolution study (examples/kalthoff-2d/README.md):
 Prints PASSED or FAILED (ctest matches PASSED) and exits 0 / 1.
 """
 
-import argparse
 import math
 import os
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import verdict  # noqa: E402
+from checks import example_args, verdict  # noqa: E402
 
 RAYLEIGH = 2803.0
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--lmp", required=True)
-    ap.add_argument("--example", required=True, help="examples/kalthoff-2d")
-    ap.add_argument("--tools", required=True, help="tools/ (crack_measure.py)")
-    ap.add_argument("--workdir", required=True)
-    ap.add_argument("--tend", type=float, default=90e-6)
-    a = ap.parse_args()
-    os.makedirs(a.workdir, exist_ok=True)
+    def more(ap):
+        ap.add_argument("--tools", required=True, help="tools/ (crack_measure.py)")
+        ap.add_argument("--tend", type=float, default=90e-6)
+    a = example_args("kalthoff-2d", more)
     prefix = os.path.join(a.workdir, "kalthoff")
     matfile = os.path.join(a.example, "..", "..", "potentials", "tlsph_materials.tlsph")
     cmd = [a.lmp, "-in", os.path.join(a.example, "in.kalthoff-2d"), "-log", prefix + ".log",

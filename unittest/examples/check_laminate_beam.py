@@ -21,22 +21,16 @@ material points (examples/laminate-beam/analyse.py):
 Prints PASSED or FAILED (ctest matches PASSED) and exits 0 / 1.
 """
 
-import argparse
 import os
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import verdict  # noqa: E402
+from checks import example_args, verdict  # noqa: E402
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--lmp", required=True)
-    ap.add_argument("--example", required=True, help="examples/laminate-beam")
-    ap.add_argument("--workdir", required=True)
-    a = ap.parse_args()
-    os.makedirs(a.workdir, exist_ok=True)
+    a = example_args("laminate-beam")
     prefix = os.path.join(a.workdir, "beam")
     cmd = [a.lmp, "-in", os.path.join(a.example, "in.laminate-beam"), "-log", prefix + ".log",
            "-screen", "none", "-var", "out", prefix, "-var", "theta2", "90",

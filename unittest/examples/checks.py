@@ -1,5 +1,22 @@
-"""What the example checks (check_*.py) share: printing a list of named checks
-and the verdict that ctest matches (PASS_REGULAR_EXPRESSION "PASSED")."""
+"""What the example checks (check_*.py) share: their command line (--lmp,
+--example, --workdir), printing a list of named checks and the verdict that
+ctest matches (PASS_REGULAR_EXPRESSION "PASSED")."""
+
+import argparse
+import os
+
+
+def example_args(example, more=None):
+    """parse --lmp LMP --example DIR --workdir DIR (and what more(ap) adds); makes workdir"""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--lmp", required=True)
+    ap.add_argument("--example", required=True, help="examples/" + example)
+    ap.add_argument("--workdir", required=True)
+    if more:
+        more(ap)
+    a = ap.parse_args()
+    os.makedirs(a.workdir, exist_ok=True)
+    return a
 
 
 def verdict(checks):
