@@ -13,6 +13,17 @@
 # Nothing is done when bin/lmp exists. The last line on stdout is the path of
 # bin/lmp. Uses `ninja -j${TLSPH_JOBS:-2}`.
 #
+# `build-lammps-plugin.sh bench` builds the side-by-side benchmark's LAMMPS
+# instead (bench/compare.sh): the same, plus the MACHDYN package (smd/tlsph,
+# with Debian's Eigen), in lammps-bench-<source version>/ (library
+# liblammps_bench.so.0). MACHDYN's pair_smd_tlsph.cpp of this version calls
+# domain->minimum_image(dx0) before dx0 is assigned (in its reference-distance
+# loop; BENCH_PATCH below): with a periodic
+# dimension -- z in every 2D run -- it then reduces an uninitialised vector,
+# which can loop for a very long time. This build moves that one call after
+# the assignment, on a hard-linked copy of the source tree (the shared tree
+# stays untouched); nothing else of MACHDYN is changed.
+#
 # Why BUILD_SHARED_LIBS=on: in this LAMMPS version (20220106) the CMake build
 # defines LMP_PLUGIN (without which `plugin load` is a no-op that only prints
 # a warning) only for a shared-library build; the plugin's undefined LAMMPS
@@ -27,6 +38,12 @@ die() { printf 'build-lammps-plugin.sh: error: %s\n' "$*" >&2; exit 1; }
 
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd -P)
 JOBS=${TLSPH_JOBS:-2}
+VARIANT=${1:-plugin}
+case "$VARIANT" in
+  plugin) EXTRA_PKGS=() ;;
+  bench)  EXTRA_PKGS=(-D PKG_MACHDYN=on -D DOWNLOAD_EIGEN3=off) ;;
+  *) die "unknown variant '$VARIANT' (allowed: plugin, bench)" ;;
+esac
 
 # source tree: from the caller (must match the installed version, checked
 # below) or from setup.sh (which fetches it when missing)
@@ -40,7 +57,7 @@ SRC_VER=$(dpkg-query -W -f='${source:Version}' liblammps-dev)
 CACHE=${TLSPH_CACHE:-${XDG_CACHE_HOME:-${HOME:-/root}/.cache}/tlsph}
 mkdir -p "$CACHE"
 CACHE=$(cd "$CACHE" && pwd -P)
-PREFIX="$CACHE/lammps-plugin-$SRC_VER"
+PREFIX="$CACHE/lammps-$VARIANT-$SRC_VER"
 LMP="$PREFIX/bin/lmp"
 
 if [ ! -x "$LMP" ]; then
@@ -65,16 +82,39 @@ if [ ! -x "$LMP" ]; then
   fi
 
   BUILD="$PREFIX/build"
-  log "building LAMMPS $SRC_VER with PLUGIN+PERI in $BUILD (ninja -j$JOBS; takes a while the first time)"
+  SRC_TREE=$LAMMPS_SOURCE_DIR
+  if [ "$VARIANT" = bench ]; then
+    # hard-linked copy of the tree; the one patched file becomes a real copy
+    SRC_TREE="$PREFIX/source"
+    rm -rf "$SRC_TREE"
+    cp -al "$LAMMPS_SOURCE_DIR" "$SRC_TREE"
+    f="$SRC_TREE/src/MACHDYN/pair_smd_tlsph.cpp"
+    cp --remove-destination "$LAMMPS_SOURCE_DIR/src/MACHDYN/pair_smd_tlsph.cpp" "$f"
+    /usr/bin/python3 - "$f" <<'BENCH_PATCH' || die "cannot patch $f (another MACHDYN version?)"
+import re, sys
+p = sys.argv[1]
+s = open(p).read()
+# 'if (periodic) domain->minimum_image(dx0...);' followed, after a comment, by
+# 'dx0 = x0j - x0i;': swap them, so that the image is taken of the assigned vector
+pat = re.compile(r"(\n[ \t]*if \(periodic\)\n[ \t]*domain->minimum_image\(dx0\(0\), dx0\(1\), dx0\(2\)\);\n)"
+                 r"(\n[ \t]*//[^\n]*\n)([ \t]*dx0 = x0j - x0i;\n)")
+s, n = pat.subn(lambda m: "\n" + m.group(3) + m.group(1) + m.group(2), s)
+if n != 1:
+    sys.exit("expected exactly one misplaced minimum_image call, found %d" % n)
+open(p, "w").write(s)
+BENCH_PATCH
+    log "patched $f: minimum_image(dx0) after dx0 = x0j - x0i (the only change)"
+  fi
+  log "building LAMMPS $SRC_VER ($VARIANT: PLUGIN+PERI ${EXTRA_PKGS[*]}) in $BUILD (ninja -j$JOBS; takes a while the first time)"
   start=$(date +%s)
   # Everything optional off: no package but PLUGIN and PERI, no OpenMP, no
   # image/movie/compression helpers, no downloads, no tests, no docs.
-  cmake -S "$LAMMPS_SOURCE_DIR/cmake" -B "$BUILD" -G Ninja \
+  cmake -S "$SRC_TREE/cmake" -B "$BUILD" -G Ninja \
     -D CMAKE_BUILD_TYPE=Release \
     -D CMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
     -D BUILD_MPI=on -D BUILD_OMP=off -D BUILD_SHARED_LIBS=on \
-    -D LAMMPS_MACHINE=plugin -D LAMMPS_SIZES=smallbig -D LAMMPS_EXCEPTIONS=off \
-    -D PKG_PLUGIN=on -D PKG_PERI=on \
+    -D LAMMPS_MACHINE=$VARIANT -D LAMMPS_SIZES=smallbig -D LAMMPS_EXCEPTIONS=off \
+    -D PKG_PLUGIN=on -D PKG_PERI=on "${EXTRA_PKGS[@]}" \
     -D PKG_KSPACE=off -D PKG_MANYBODY=off -D PKG_MOLECULE=off -D PKG_RIGID=off \
     -D PKG_PYTHON=off -D PKG_OPENMP=off -D PKG_KOKKOS=off -D PKG_GPU=off \
     -D WITH_JPEG=off -D WITH_PNG=off -D WITH_GZIP=off -D WITH_FFMPEG=off \
@@ -82,10 +122,10 @@ if [ ! -x "$LMP" ]; then
     -D ENABLE_TESTING=off -D WITH_SWIG=off \
     -D CMAKE_INSTALL_RPATH='$ORIGIN/../lib' -D CMAKE_BUILD_WITH_INSTALL_RPATH=on \
     -D CMAKE_SKIP_INSTALL_RPATH=off -D Python_EXECUTABLE=/usr/bin/python3 >&2
-  ninja -C "$BUILD" -j"$JOBS" lmp_plugin >&2
+  ninja -C "$BUILD" -j"$JOBS" lmp_$VARIANT >&2
 
   # symbols a dlopen()ed plugin needs are exported by the shared library
-  so="$BUILD/liblammps_plugin.so.0"
+  so="$BUILD/liblammps_$VARIANT.so.0"
   syms=$(nm -D --defined-only "$so")
   grep -q ' T _ZN9LAMMPS_NS4PairC2EPNS_6LAMMPSE$' <<<"$syms" ||
     die "$so does not export LAMMPS_NS::Pair::Pair(LAMMPS*)"
@@ -93,13 +133,13 @@ if [ ! -x "$LMP" ]; then
     die "$so has no LAMMPS_NS::plugin_register: PLUGIN package not built"
 
   mkdir -p "$PREFIX/bin" "$PREFIX/lib"
-  cp -a "$BUILD"/liblammps_plugin.so* "$PREFIX/lib/"
-  cp "$BUILD/lmp_plugin" "$PREFIX/bin/lmp.tmp"
+  cp -a "$BUILD"/liblammps_$VARIANT.so* "$PREFIX/lib/"
+  cp "$BUILD/lmp_$VARIANT" "$PREFIX/bin/lmp.tmp"
   # it must load our library, and 'plugin' must be a working command
   # (LMP_PLUGIN defined), not the "Ignoring plugin command" stub
   deps=$(ldd "$PREFIX/bin/lmp.tmp")
-  grep -q 'liblammps_plugin.so.0 => /' <<<"$deps" && ! grep -q 'liblammps.so' <<<"$deps" ||
-    { printf '%s\n' "$deps" >&2; die "$PREFIX/bin/lmp.tmp does not load lib/liblammps_plugin.so.0"; }
+  grep -q "liblammps_$VARIANT.so.0 => /" <<<"$deps" && ! grep -q 'liblammps.so' <<<"$deps" ||
+    { printf '%s\n' "$deps" >&2; die "$PREFIX/bin/lmp.tmp does not load lib/liblammps_$VARIANT.so.0"; }
   out=$(cd "$PREFIX" && echo "plugin list" | "$PREFIX/bin/lmp.tmp" -log none -echo none 2>&1) || true
   grep -q "Currently loaded plugins" <<<"$out" || { printf '%s\n' "$out" >&2;
     die "'plugin list' does not work in $PREFIX/bin/lmp.tmp"; }

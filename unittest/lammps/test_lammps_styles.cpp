@@ -146,6 +146,12 @@ struct ForceCase {
   int dim;
   double alpha, beta, gamma;
   bool newton;
+  // further reference cases (the speed work must keep every one of them):
+  // pair style and its extra keywords, the material, 2D periodic in x
+  std::string style = "tlsph";
+  std::string extra = "";
+  std::string coeff = "E 210e9 nu 0.3 rho 7800";
+  bool periodic_x = false;
 };
 
 std::string force_script(const ForceCase &c)
@@ -154,9 +160,8 @@ std::string force_script(const ForceCase &c)
   s += c.newton ? "newton on\n" : "newton off\n";
   if (c.dim == 2) {
     // open boundaries in x and y: corner and edge particles included
-    s += R"(dimension 2
-boundary s s p
-atom_style peri
+    s += c.periodic_x ? "dimension 2\nboundary p s p\n" : "dimension 2\nboundary s s p\n";
+    s += R"(atom_style peri
 lattice sq 0.001
 region box block 0 8 0 6 -0.5 0.5
 create_box 1 box
@@ -192,11 +197,11 @@ velocity all set v_vx v_vy v_vz units box
 )";
   }
   char buf[200];
-  snprintf(buf, sizeof(buf), "pair_style tlsph h 0.00133 alpha %g beta %g gamma %g\n", c.alpha,
-           c.beta, c.gamma);
+  snprintf(buf, sizeof(buf), "pair_style %s h 0.00133 alpha %g beta %g gamma %g %s\n",
+           c.style.c_str(), c.alpha, c.beta, c.gamma, c.extra.c_str());
   s += buf;
-  s += R"(pair_coeff 1 1 E 210e9 nu 0.3 rho 7800
-fix 1 all nve
+  s += "pair_coeff 1 1 " + c.coeff + "\n";
+  s += R"(fix 1 all nve
 thermo_style custom step pe press
 run 0
 )";
@@ -286,7 +291,9 @@ void check_reference(const std::string &name, const ForceCase &c)
   ForceResult ref;
   ASSERT_TRUE(read_reference(file, ref))
       << "cannot read " << file << " (TLSPH_WRITE_REF=1 generates it)";
-  const double tol = 1.0e-10;
+  // round-off: the refactorings of the step (bond layout, loop order) keep every
+  // force within 1e-12 of the largest
+  const double tol = 1.0e-12;
   EXPECT_LE(max_diff(r.f, ref.f), tol * largest(ref.f)) << "forces differ from " << file;
   EXPECT_NEAR(r.pe, ref.pe, tol * std::fabs(ref.pe));
   double vmax = 0.0;
@@ -344,6 +351,23 @@ void check_terms_active(const ForceCase &c)
 
 const ForceCase case_2d{2, 1.0, 0.5, 2.5, true};
 const ForceCase case_3d{3, 1.0, 0.5, 2.5, true};
+// the thesis's linear gradient
+const ForceCase case_2d_linear{2, 1.0, 0.5, 2.5, true, "tlsph", "gradient linear"};
+const ForceCase case_3d_linear{3, 1.0, 0.5, 2.5, true, "tlsph", "gradient linear"};
+// 2D periodic in x (ghost images across the boundary, x0 not shifted)
+const ForceCase case_2d_periodic{2, 1.0, 0.5, 2.5, true, "tlsph", "", "E 210e9 nu 0.3 rho 7800",
+                                 true};
+// an orthotropic ply at 30 degrees
+const char *const ply30 = "E1 140e9 E2 10e9 E3 10e9 G12 5e9 G13 5e9 G23 3.5e9 nu12 0.3 "
+                          "nu13 0.3 nu23 0.4 rho 1600 theta 30";
+const ForceCase case_2d_ortho{2, 1.0, 0.5, 2.5, true, "tlsph", "", ply30};
+const ForceCase case_3d_ortho{3, 1.0, 0.5, 2.5, true, "tlsph", "", ply30};
+// tlsph/damage with a critical stretch that the prescribed displacement
+// exceeds on some bonds (they break in the force call), and alpha_d
+const ForceCase case_2d_damage{2, 1.0, 0.5, 2.5, true, "tlsph/damage", "alpha_d 2.0",
+                               "E 210e9 nu 0.3 rho 7800 sc 0.011"};
+const ForceCase case_3d_damage{3, 1.0, 0.5, 2.5, true, "tlsph/damage", "alpha_d 2.0",
+                               "E 210e9 nu 0.3 rho 7800 sc 0.008"};
 
 }    // namespace
 
@@ -357,6 +381,57 @@ TEST(Forces, reference_2d)
 TEST(Forces, reference_3d)
 {
   check_reference("3d", case_3d);
+}
+
+TEST(Forces, reference_2d_linear)
+{
+  check_reference("2d_linear", case_2d_linear);
+}
+
+TEST(Forces, reference_3d_linear)
+{
+  check_reference("3d_linear", case_3d_linear);
+}
+
+TEST(Forces, reference_2d_periodic)
+{
+  check_reference("2d_periodic", case_2d_periodic);
+}
+
+TEST(Forces, reference_2d_orthotropic)
+{
+  check_reference("2d_ortho", case_2d_ortho);
+}
+
+TEST(Forces, reference_3d_orthotropic)
+{
+  check_reference("3d_ortho", case_3d_ortho);
+}
+
+// the damage cases break some bonds, not all, in their force call
+void check_some_broken(const ForceCase &c)
+{
+  LAMMPS *lmp = open_lammps();
+  run_script(lmp, force_script(c));
+  long broken = 0, intact = 0;
+  for (const auto &kv : bond_rows(lmp))
+    for (size_t k = 3; k < kv.second.size(); k += 2)
+      (kv.second[k] == FixTLSPHBonds::BROKEN ? broken : intact)++;
+  delete lmp;
+  EXPECT_GT(broken, 10) << "the damage reference case breaks (almost) no bond";
+  EXPECT_GT(intact, 5 * broken) << "the damage reference case breaks too many bonds";
+}
+
+TEST(Forces, reference_2d_damage)
+{
+  check_reference("2d_damage", case_2d_damage);
+  check_some_broken(case_2d_damage);
+}
+
+TEST(Forces, reference_3d_damage)
+{
+  check_reference("3d_damage", case_3d_damage);
+  check_some_broken(case_3d_damage);
 }
 
 TEST(Forces, zero_total_2d)
