@@ -19,7 +19,7 @@ export TLSPH_PYTHON = $(PYTHON)
 export LMP_TLSPH = $(BUILD_ABS)/lmp_tlsph
 export TLSPH_PLUGIN = $(BUILD_ABS)/tlsphplugin.so
 
-.PHONY: all setup configure build run test bench bench-instructions clean
+.PHONY: all setup configure build run test bench bench-instructions bench-compare clean
 
 all: build
 
@@ -58,6 +58,11 @@ bench: build
 # load on a shared machine blurs (doc/bench.md, "Instruction counts")
 bench-instructions: build
 	bash bench/instructions.sh
+
+# side by side with MACHDYN's smd/tlsph in one LAMMPS binary (builds that
+# LAMMPS once, cached in $(TLSPH_CACHE)); doc/bench.md, "Side by side"
+bench-compare: build
+	bash bench/compare.sh
 
 clean:
 	rm -rf "$(BUILD)"

@@ -48,7 +48,7 @@ void ComputeTLSPHDamageAtom::compute_peratom()
     values[i][0] = values[i][1] = values[i][2] = values[i][3] = 0.0;
     if (!(mask[i] & groupbit)) continue;
     int nb;
-    pair->intact_bonds(i, nb);
+    pair->intact_partners(i, nb);
     values[i][0] = pair->damage(i);
     values[i][1] = pair->smoothed_damage(i);
     values[i][2] = nb;

@@ -72,11 +72,11 @@ void FixTLSPHVelocityFilter::end_of_step()
     vnew[i][2] = v[i][2];
     if (!(mask[i] & groupbit) || !(pair->damage(i) > phi_c)) continue;
     int nb;
-    const auto *b = pair->intact_bonds(i, nb);
+    const int *partner = pair->intact_partners(i, nb);
     double s[3] = {0, 0, 0}, wsum = 0.0;
     for (int m = 0; m < nb; m++) {
-      const int j = b[m].j;
-      const double W = pair->kernel_value(b[m]);
+      const int j = partner[m];
+      const double W = pair->kernel_value(i, m);
       for (int d = 0; d < 3; d++) s[d] += (v[i][d] - v[j][d]) * W;
       wsum += W;
     }

@@ -22,6 +22,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <utility>
 
 using namespace LAMMPS_NS;
 using namespace TLSPH;
@@ -42,9 +43,10 @@ PairTLSPH::PairTLSPH(LAMMPS *lmp) : Pair(lmp)
   nmax = 0;
   Q = sumg = F = P = fown = pk = nullptr;
   psi = nullptr;
-  nbond = nullptr;
+  nbond = nlead = nullptr;
   bond_start = nullptr;
-  cache = nullptr;
+  lean = TLSPH::LeanArrays{nullptr, nullptr, nullptr, nullptr};
+  x0c = nullptr;
   ncache_max = nstart_max = 0;
 
   single_enable = 0;
@@ -72,8 +74,13 @@ PairTLSPH::~PairTLSPH()
   memory->destroy(pk);
   memory->destroy(psi);
   memory->destroy(nbond);
+  memory->destroy(nlead);
   memory->destroy(bond_start);
-  memory->sfree(cache);
+  memory->destroy(lean.j);
+  memory->destroy(lean.g);
+  memory->destroy(lean.w);
+  memory->destroy(lean.k);
+  memory->destroy(x0c);
 }
 
 void PairTLSPH::allocate()
@@ -558,6 +565,8 @@ void PairTLSPH::grow_peratom()
   memory->destroy(pk);
   memory->destroy(psi);
   memory->destroy(nbond);
+  memory->destroy(nlead);
+  memory->destroy(x0c);
   memory->create(Q, nmax, QMAX, "tlsph:Q");
   memory->create(sumg, nmax, 3, "tlsph:sumg");
   memory->create(F, nmax, 9, "tlsph:F");
@@ -566,8 +575,33 @@ void PairTLSPH::grow_peratom()
   memory->create(pk, nmax, packed_size(), "tlsph:packed");
   memory->create(psi, nmax, "tlsph:psi");
   memory->create(nbond, nmax, "tlsph:nbond");
+  memory->create(nlead, nmax, "tlsph:nlead");
+  memory->create(x0c, nmax, 3, "tlsph:x0c");
 }
 
+/* x0c: the reference positions of local and ghost particles, shifted by
+   the periodic image that x is in (x of a ghost carries the image shift,
+   its x0 does not; x of a local atom is wrapped into the box at
+   reneighboring, its x0 is not): x0c = x0 + (u - minimum_image(u)),
+   u = x - x0. Then X_ij = x0c_j - x0c_i for every bond, and nothing
+   changes between two reneighborings. Without a periodic dimension
+   x0c = x0 exactly. */
+void PairTLSPH::set_reference_images()
+{
+  double **x = atom->x, **x0 = atom->x0;
+  const int nall = atom->nlocal + atom->nghost;
+  const bool periodic = domain->xperiodic || domain->yperiodic || domain->zperiodic;
+  for (int i = 0; i < nall; i++) {
+    double u[3] = {x[i][0] - x0[i][0], x[i][1] - x0[i][1], x[i][2] - x0[i][2]};
+    double um[3] = {u[0], u[1], u[2]};
+    if (periodic) domain->minimum_image(um[0], um[1], um[2]);
+    for (int d = 0; d < 3; d++) x0c[i][d] = (um[d] == u[d]) ? x0[i][d] : x0[i][d] + (u[d] - um[d]);
+  }
+}
+
+/* The bond cache in the lean layout (pair_tlsph.h). The full records are
+   made per particle in a scratch buffer -- the corrections work on them --
+   and only what the step reads is kept. */
 void PairTLSPH::build_bond_cache()
 {
   const int nlocal = atom->nlocal;
@@ -575,13 +609,20 @@ void PairTLSPH::build_bond_cache()
   double *vfrac = atom->vfrac;
   tagint *tag = atom->tag;
   if (atom->nmax > nmax) grow_peratom();
+  set_reference_images();
 
   int total = 0;
   for (int i = 0; i < nlocal; i++) total += bonds->npartner[i];
   if (total > ncache_max) {
     ncache_max = total + total / 8 + 16;
-    memory->sfree(cache);
-    cache = (BondCache *) memory->smalloc((bigint) ncache_max * sizeof(BondCache), "tlsph:cache");
+    memory->destroy(lean.j);
+    memory->destroy(lean.g);
+    memory->destroy(lean.w);
+    memory->destroy(lean.k);
+    memory->create(lean.j, ncache_max, "tlsph:bond_j");
+    memory->create(lean.g, (bigint) ncache_max * dim, "tlsph:bond_g");
+    memory->create(lean.w, (bigint) ncache_max * 2, "tlsph:bond_w");
+    memory->create(lean.k, ncache_max, "tlsph:bond_k");
   }
   if (nlocal + 1 > nstart_max) {
     nstart_max = atom->nmax + 1;
@@ -592,47 +633,64 @@ void PairTLSPH::build_bond_cache()
   const double kernel_scale = (dim == 2) ? 1.0 / thickness : 1.0;
   int nb = 0;
   std::vector<double> vj(bonds->maxpartner);
+  std::vector<BondCache> scratch(bonds->maxpartner);
   // Shepard sum kernel_scale * sum_j V_j W_ij (self included): about 1 inside
   // the body when the volumes match the kernel normalisation
   double shepard_max = 0.0;
   int degraded = 0;
+  // largest |X_ij (minimum image of x0) - (x0c_j - x0c_i)| relative to |X_ij|
+  double image_error = 0.0;
+  tagint image_i = 0;
   for (int i = 0; i < nlocal; i++) {
     bond_start[i] = nb;
     const int np = bonds->npartner[i];
-    if (np > (int) vj.size()) vj.resize(np);
+    if (np > (int) vj.size()) {
+      vj.resize(np);
+      scratch.resize(np);
+    }
     double shepard = kernel_scale * vfrac[i] * kernel.value(0.0);
     tagint *partner = bonds->partner[i];
     int *state = bonds->state[i];
     // intact bonds first, then (for correction_from_all_partners) the broken
     // ones, which only enter the correction matrix
+    // and the intact ones in two groups: first those that lead their pair
+    // (partner a ghost or a local particle after i), then the others
     int n = 0;
-    for (int pass = 0; pass < 2; pass++) {
-      if (pass == 1 && !correction_from_all_partners) break;
+    for (int pass = 0; pass < 3; pass++) {
+      if (pass == 2 && !correction_from_all_partners) break;
       for (int k = 0; k < np; k++) {
-        if (pass == 0 && state[k] != FixTLSPHBonds::INTACT) continue;
-        if (pass == 1 && state[k] != FixTLSPHBonds::BROKEN) continue;
+        if (pass < 2 && state[k] != FixTLSPHBonds::INTACT) continue;
+        if (pass == 2 && state[k] != FixTLSPHBonds::BROKEN) continue;
         int j = atom->map(partner[k]);
         if (j < 0) {
-          if (pass == 1) continue;    // a broken partner may have left the ghost shell
+          if (pass == 2) continue;    // a broken partner may have left the ghost shell
           error->one(FLERR, "pair tlsph: partner {} of particle {} is farther away than the "
                             "ghost cutoff at step {}: raise comm_modify cutoff or pair_style "
                             "cutfactor", partner[k], tag[i], update->ntimestep);
         }
         j = domain->closest_image(i, j);
-        double X[3] = {x0[j][0] - x0[i][0], x0[j][1] - x0[i][1], x0[j][2] - x0[i][2]};
-        domain->minimum_image(X[0], X[1], X[2]);
-        if (dim == 2) X[2] = 0.0;
-        make_bond(kernel, X, vfrac[i], vfrac[j], j, k, cache[nb + n], kernel_scale);
-        if (pass == 0) shepard += kernel_scale * vfrac[j] * kernel.value(sqrt(dot3(X, X)));
+        if (pass < 2 && (pass == 0) != (j >= nlocal || j > i)) continue;
+        double Xm[3] = {x0[j][0] - x0[i][0], x0[j][1] - x0[i][1], x0[j][2] - x0[i][2]};
+        domain->minimum_image(Xm[0], Xm[1], Xm[2]);
+        // the step takes X_ij from x0c: the same vector unless a particle has
+        // moved by half a periodic box length or more
+        double X[3] = {x0c[j][0] - x0c[i][0], x0c[j][1] - x0c[i][1], x0c[j][2] - x0c[i][2]};
+        if (dim == 2) X[2] = Xm[2] = 0.0;
+        const double e = sqrt(((X[0] - Xm[0]) * (X[0] - Xm[0]) + (X[1] - Xm[1]) * (X[1] - Xm[1]) +
+                               (X[2] - Xm[2]) * (X[2] - Xm[2])) / dot3(Xm, Xm));
+        if (!(e <= image_error)) image_error = e, image_i = tag[i];
+        make_bond(kernel, X, vfrac[i], vfrac[j], j, k, scratch[n], kernel_scale);
+        if (pass < 2) shepard += kernel_scale * vfrac[j] * kernel.value(sqrt(dot3(X, X)));
         vj[n] = vfrac[j];
         n++;
       }
-      if (pass == 0) nbond[i] = n;
+      if (pass == 0) nlead[i] = n;
+      if (pass == 1) nbond[i] = n;
     }
     const int nall = n;
     n = nbond[i];
     shepard_max = MAX(shepard_max, shepard);
-    BondCache *b = &cache[nb];
+    BondCache *b = scratch.data();
     double *fz = (correction_from_all_partners && bonds->nfrozen) ? bonds->frozen[i] : nullptr;
     if (fz && fz[0] == 1.0) {
       // correction frozen at setup: independent of which broken partners
@@ -652,9 +710,21 @@ void PairTLSPH::build_bond_cache()
       for (int m = 0; m < n; m++)
         for (int d = 0; d < 3; d++) sumg[i][d] += b[m].g[d];
     }
+    for (int m = 0; m < nall; m++) {
+      lean.j[nb + m] = b[m].j;
+      for (int d = 0; d < dim; d++) lean.g[(bigint) dim * (nb + m) + d] = b[m].g[d];
+      lean.w[2 * (bigint) (nb + m)] = b[m].wv;
+      lean.w[2 * (bigint) (nb + m) + 1] = b[m].whg;
+      lean.k[nb + m] = b[m].k;
+    }
     nb += nall;
   }
   ndegraded = degraded;
+  if (image_error > 1.0e-8)
+    error->one(FLERR, "pair tlsph: particle {} has moved by half a periodic box length or more "
+                      "since its reference position was set (its bond vectors no longer follow "
+                      "from the minimum image): not supported; enlarge the periodic box",
+               image_i);
   if (report_fallback) {
     double all;
     MPI_Allreduce(&shepard_max, &all, 1, MPI_DOUBLE, MPI_MAX, world);
@@ -668,11 +738,44 @@ void PairTLSPH::build_bond_cache()
   bond_start[nlocal] = nb;
 }
 
+// full records of the first n bonds of local particle i (g, c and the
+// weights as made by make_bond(); a correction completes them)
+void PairTLSPH::unpack_bonds(int i, int n, std::vector<BondCache> &b,
+                             std::vector<double> &vj) const
+{
+  const double kernel_scale = (dim == 2) ? 1.0 / thickness : 1.0;
+  const double *vfrac = atom->vfrac;
+  if ((int) b.size() < n) b.resize(n), vj.resize(n);
+  const int s = bond_start[i];
+  for (int m = 0; m < n; m++) {
+    double X[3];
+    bond_vector(i, m, X);
+    const int j = lean.j[s + m];
+    make_bond(kernel, X, vfrac[i], vfrac[j], j, lean.k[s + m], b[m], kernel_scale);
+    vj[m] = vfrac[j];
+  }
+}
+
+// exchange bonds m1 and m2 of local particle i in the lean arrays
+void PairTLSPH::swap_bonds(int i, int m1, int m2)
+{
+  const bigint a = bond_start[i] + m1, b = bond_start[i] + m2;
+  std::swap(lean.j[a], lean.j[b]);
+  std::swap(lean.k[a], lean.k[b]);
+  for (int d = 0; d < dim; d++) std::swap(lean.g[dim * a + d], lean.g[dim * b + d]);
+  std::swap(lean.w[2 * a], lean.w[2 * b]);
+  std::swap(lean.w[2 * a + 1], lean.w[2 * b + 1]);
+}
+
 namespace {
 // row accessor over a LAMMPS per-atom array
+// rows of a contiguous per-atom array (memory->create's double** arrays
+// are one block): row j is base + stride j, one load instead of two
 struct Rows {
-  double **p;
-  const double *operator()(int j) const { return p[j]; }
+  const double *base;
+  int stride;
+  Rows(double **p, int n) : base(p ? p[0] : nullptr), stride(n) {}
+  const double *operator()(int j) const { return base + (bigint) stride * j; }
 };
 struct TypeOf {
   const int *t;
@@ -698,6 +801,23 @@ struct VirialTally {
     virial[3] -= 0.5 * xij[0] * f[1];
     virial[4] -= 0.5 * xij[0] * f[2];
     virial[5] -= 0.5 * xij[1] * f[2];
+  }
+};
+// Newton's third law for the viscous and hourglass pair forces (see
+// TLSPH::NoPairs): the opposite force to a local partner, also into the
+// per-atom tallies of the bond fix
+struct PairForces {
+  static constexpr bool enabled = true;
+  int nlead;
+  int nlocal;
+  double **f, **f_hg, **f_visc;
+  void operator()(int j, const double *pv, const double *ph) const
+  {
+    for (int d = 0; d < 3; d++) {
+      f[j][d] -= pv[d] + ph[d];
+      f_visc[j][d] -= pv[d];
+      f_hg[j][d] -= ph[d];
+    }
   }
 };
 }    // namespace
@@ -731,11 +851,11 @@ int PairTLSPH::correct_particle(int i, BondCache *b, int n, const double *vj)
 
 template <int DIM, int ORDER, int LAWS> void PairTLSPH::compute_deformation()
 {
-  const Rows x{atom->x};
+  const Rows x(atom->x, 3);
   const int nlocal = atom->nlocal;
   const bool need_K = viscosity_active();
   for (int i = 0; i < nlocal; i++) {
-    TLSPH::deformation_gradient<DIM>(x, i, &cache[bond_start[i]], nbond[i], F[i]);
+    TLSPH::deformation_gradient_bonds<DIM>(x, i, bonds_of<DIM>(i), nbond[i], F[i]);
     particle_stress<DIM, ORDER, LAWS>(i, need_K);
   }
 }
@@ -762,7 +882,7 @@ template <int DIM, int ORDER> void PairTLSPH::dispatch_deformation()
 template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, int SCATTER>
 void PairTLSPH::compute_forces()
 {
-  const Rows x{atom->x}, v{atom->v}, pkr{pk};
+  const Rows x(atom->x, 3), v(atom->v, 3), pkr(pk, packed_size());
   const TypeOf type{atom->type};
   double **f = atom->f;
   double *vfrac = atom->vfrac;
@@ -775,15 +895,27 @@ void PairTLSPH::compute_forces()
   const ScatterForce scatter{f};
   const PairMaterial *pm = pairmat.data();
 
+  // with Newton's third law the partners receive their share of the pair
+  // forces: the tallies are sums
+  for (int i = 0; i < nlocal; i++)
+    for (int d = 0; d < 3; d++) f_hg[i][d] = f_visc[i][d] = 0.0;
+  PairForces pairs{0, nlocal, f, f_hg, f_visc};
   for (int i = 0; i < nlocal; i++) {
     double fs[3] = {fown[i][0], fown[i][1], fown[i][2]}, fv[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
-    particle_force<DIM, ORDER, HG, VISC, VIRIAL, SCATTER>(
-        i, vfrac[i], &cache[bond_start[i]], nbond[i], x, v, pkr, type, pm, h, beta, gamma, P[i],
-        fs, fv, fh, tally, scatter);
+    if (SCATTER) {
+      pairs.nlead = nlead[i];
+      particle_force_bonds<DIM, ORDER, HG, VISC, VIRIAL, SCATTER>(
+          i, vfrac[i], bonds_of<DIM>(i), nbond[i], x, v, pkr, type, pm, h, beta, gamma, P[i], fs,
+          fv, fh, tally, scatter, pairs);
+    } else {
+      particle_force_bonds<DIM, ORDER, HG, VISC, VIRIAL, SCATTER>(
+          i, vfrac[i], bonds_of<DIM>(i), nbond[i], x, v, pkr, type, pm, h, beta, gamma, P[i], fs,
+          fv, fh, tally, scatter);
+    }
     for (int d = 0; d < DIM; d++) f[i][d] += fs[d] + fv[d] + fh[d];
     for (int d = 0; d < 3; d++) {
-      f_hg[i][d] = fh[d];
-      f_visc[i][d] = fv[d];
+      f_hg[i][d] += fh[d];
+      f_visc[i][d] += fv[d];
     }
   }
 }
@@ -1020,7 +1152,10 @@ void PairTLSPH::read_restart_settings(FILE *fp)
 double PairTLSPH::memory_usage()
 {
   double bytes = (double) nmax * ((QMAX + 25 + packed_size()) * sizeof(double) + sizeof(int));
-  bytes += (double) ncache_max * sizeof(BondCache) + nstart_max * sizeof(int);
+  bytes += (double) nmax * (3 * sizeof(double) + sizeof(int));    // x0c, nlead
+  // lean bond arrays: partner, g (dim), two weights, slot
+  bytes += (double) ncache_max * (2 * sizeof(int) + (dim + 2) * sizeof(double));
+  bytes += (double) nstart_max * sizeof(int);
   return bytes;
 }
 

@@ -19,6 +19,7 @@ PairStyle(tlsph,PairTLSPH)
 #ifndef LMP_PAIR_TLSPH_H
 #define LMP_PAIR_TLSPH_H
 
+#include "atom.h"
 #include "pair.h"
 #include "tlsph_kernel.h"
 #include "tlsph_material.h"
@@ -137,13 +138,43 @@ class PairTLSPH : public Pair {
   }
   double *psi;        // strain energy density
   int *nbond;         // # of cached (intact) bonds
+  int *nlead;         // # of them that lead their pair (first in the segment):
+                      // partner a ghost or a local particle after i
   void grow_peratom();
 
-  // bond cache, CSR layout over local atoms
+  // bond cache in the lean layout (TLSPH::LeanBonds): structure of arrays,
+  // CSR over the local atoms (bonds of i: bond_start[i] .. + the segment's
+  // length; the first nbond[i] are intact)
   int *bond_start;
-  BondCache *cache;
+  TLSPH::LeanArrays lean;
   int ncache_max, nstart_max;
+  double **x0c;       // reference positions consistent with the images of x (nmax)
   void build_bond_cache();
+  void set_reference_images();
+  // full records of the bonds of local particle i, from the lean arrays
+  // (for a new correction: tlsph/damage)
+  void unpack_bonds(int i, int n, std::vector<BondCache> &b, std::vector<double> &vj) const;
+  // the step's view of particle i's bonds
+  struct X0Rows {    // rows of x0c (one contiguous block)
+    const double *p;
+    const double *operator()(int j) const { return p + 3 * (bigint) j; }
+  };
+  template <int DIM> TLSPH::LeanBonds<DIM, X0Rows> bonds_of(int i) const
+  {
+    const int s = bond_start[i];
+    return TLSPH::LeanBonds<DIM, X0Rows>{lean.j + s,   lean.g + DIM * s, lean.w + 2 * s,
+                                         X0Rows{x0c[0]}, x0c[i], kernel,
+                                         atom->vfrac[i], order};
+  }
+  // reference bond vector X_ij of bond m of particle i (3 components)
+  void bond_vector(int i, int m, double *X) const
+  {
+    const double *a = x0c[i], *b = x0c[lean.j[bond_start[i] + m]];
+    X[0] = b[0] - a[0];
+    X[1] = b[1] - a[1];
+    X[2] = (dim == 2) ? 0.0 : b[2] - a[2];
+  }
+  void swap_bonds(int i, int m1, int m2);
 
   // LAWS 0: every type isotropic; 1: each particle picks its type's law
   template <int DIM, int ORDER, int LAWS> void compute_deformation();

@@ -238,9 +238,11 @@ void PairTLSPHDamage::grow_damage()
   alpha_atom = alphas;
 }
 
-double PairTLSPHDamage::kernel_value(const BondCache &b) const
+double PairTLSPHDamage::kernel_value(int i, int m) const
 {
-  return kernel.value(sqrt(dot3(b.X, b.X)));
+  double X[3];
+  bond_vector(i, m, X);
+  return kernel.value(sqrt(dot3(X, X)));
 }
 
 /* ----------------------------------------------------------------------
@@ -317,15 +319,14 @@ void PairTLSPHDamage::apply_precracks()
 // corrected gradients of particle i from its intact bonds (policy 'rebuild')
 void PairTLSPHDamage::recorrect(int i)
 {
-  BondCache *b = &cache[bond_start[i]];
   const int n = nbond[i];
-  std::vector<double> vj(n);
-  const double Vi = atom->vfrac[i];
-  for (int m = 0; m < n; m++) {
-    vj[m] = atom->vfrac[b[m].j];
-    b[m].c = Vi;    // correction() multiplies it by the weight
-  }
-  correct_particle(i, b, n, vj.data());
+  std::vector<BondCache> b;
+  std::vector<double> vj;
+  unpack_bonds(i, n, b, vj);
+  correct_particle(i, b.data(), n, vj.data());
+  const int s = bond_start[i];
+  for (int m = 0; m < n; m++)
+    for (int d = 0; d < dim; d++) lean.g[(bigint) dim * (s + m) + d] = b[m].g[d];
 }
 
 /* Pass (1) with the stretch criterion fused in: for each local particle,
@@ -346,17 +347,21 @@ void PairTLSPHDamage::deform_and_break()
   const double up0 = stretch_up[ntp + 1] * (1.0 - 1.0e-10);
   const double down0 = stretch_down[ntp + 1] * (1.0 + 1.0e-10);
   const bool need_K = viscosity_active();
+  double **x0 = x0c;
   for (int i = 0; i < nlocal; i++) {
-    BondCache *b = &cache[bond_start[i]];
+    const int s = bond_start[i];
+    int *bj = lean.j + s;
+    double *bg = lean.g + (bigint) DIM * s;
     int n = nbond[i];
     const int ti = type[i] * ntp;
-    const double *xi = x[i];
+    const double *xi = x[i], *x0i = x0[i];
     double *Fi = F[i];
-    mat_identity(Fi);
+    double Fa[DIM * DIM];
+    for (int k = 0; k < DIM * DIM; k++) Fa[k] = 0.0;
     bool changed = false;
     for (int m = 0; m < n;) {
-      const int j = b[m].j;
-      const double *xj = x[j];
+      const int j = bj[m];
+      const double *xj = x[j], *x0j = x0[j];
       // s = (r - r0)/r0 >= s_c  <=>  r^2 >= r0^2 (1 + s_c)^2 (and, with the
       // absolute criterion, s <= -s_c  <=>  r^2 <= r0^2 (1 - s_c)^2): a cheap
       // filter without square roots; only bonds within round-off of the limit
@@ -364,37 +369,47 @@ void PairTLSPHDamage::deform_and_break()
       double du[3], r2 = 0.0, r02 = 0.0;
       for (int d = 0; d < DIM; d++) {
         const double dx = xj[d] - xi[d];
-        du[d] = dx - b[m].X[d];
+        const double X = x0j[d] - x0i[d];
+        du[d] = dx - X;
         r2 += dx * dx;
-        r02 += b[m].X[d] * b[m].X[d];
+        r02 += X * X;
       }
       const double lim_up = PAIRS ? up[ti + type[j]] * (1.0 - 1.0e-10) : up0;
       bool suspect = r2 >= r02 * lim_up;
       if (ABS) suspect = suspect || r2 <= r02 * (PAIRS ? down[ti + type[j]] * (1.0 + 1.0e-10) : down0);
       if (suspect) {
         const double r0 = sqrt(r02);
-        double s = (sqrt(r2) - r0) / r0;
-        if (ABS) s = fabs(s);
-        if (s >= MIN(sc[type[i]], sc[type[j]])) {
-          bonds->state[i][b[m].k] = FixTLSPHBonds::BROKEN;
+        double st = (sqrt(r2) - r0) / r0;
+        if (ABS) st = fabs(st);
+        if (st >= MIN(sc[type[i]], sc[type[j]])) {
+          bonds->state[i][lean.k[s + m]] = FixTLSPHBonds::BROKEN;
           nbroken_local++;
           // move the bond behind the intact ones (it stays in the segment:
           // the 'setup' policy keeps it in the correction); the bond moved
           // into slot m is examined next
           if (!rebuild)
-            for (int d = 0; d < 3; d++) sumg[i][d] -= b[m].g[d];
-          BondCache tmp = b[m];
-          b[m] = b[n - 1];
-          b[n - 1] = tmp;
+            for (int d = 0; d < DIM; d++) sumg[i][d] -= bg[DIM * m + d];
+          // keep the leading bonds first (pair_tlsph.h: nlead)
+          if (m < nlead[i]) {
+            swap_bonds(i, m, nlead[i] - 1);
+            swap_bonds(i, nlead[i] - 1, n - 1);
+            nlead[i]--;
+          } else {
+            swap_bonds(i, m, n - 1);
+          }
           n--;
           changed = true;
           continue;
         }
       }
+      const double *g = bg + DIM * m;
       for (int r = 0; r < DIM; r++)
-        for (int cc = 0; cc < DIM; cc++) Fi[3 * r + cc] += du[r] * b[m].g[cc];
+        for (int cc = 0; cc < DIM; cc++) Fa[DIM * r + cc] += du[r] * g[cc];
       m++;
     }
+    mat_identity(Fi);
+    for (int r = 0; r < DIM; r++)
+      for (int cc = 0; cc < DIM; cc++) Fi[3 * r + cc] += Fa[DIM * r + cc];
     if (changed) {
       nbond[i] = n;
       if (rebuild) {
@@ -404,7 +419,7 @@ void PairTLSPHDamage::deform_and_break()
           double **p;
           const double *operator()(int k) const { return p[k]; }
         } rows{x};
-        TLSPH::deformation_gradient<DIM>(rows, i, b, n, Fi);
+        TLSPH::deformation_gradient_bonds<DIM>(rows, i, bonds_of<DIM>(i), n, Fi);
       }
     }
     particle_stress<DIM, ORDER, LAWS>(i, need_K);
@@ -500,8 +515,8 @@ void PairTLSPHDamage::after_deformation()
   for (int i = 0; i < nall; i++) mark[i] = 0.0;
   for (int i = 0; i < nlocal; i++) {
     if (!(phi[i] > 0.0)) continue;
-    const BondCache *b = &cache[bond_start[i]];
-    for (int m = 0; m < nbond[i]; m++) mark[b[m].j] = 1.0;
+    const int *bj = lean.j + bond_start[i];
+    for (int m = 0; m < nbond[i]; m++) mark[bj[m]] = 1.0;
   }
   comm_stage = 2;
   comm->reverse_comm_pair(this);
@@ -514,12 +529,12 @@ void PairTLSPHDamage::after_deformation()
     } else if (!(mark[i] > 0.0)) {
       phis[i] = 0.0;    // no damaged intact partner
     } else {
-      const BondCache *b = &cache[bond_start[i]];
+      const int *bj = lean.j + bond_start[i];
       const int n = nbond[i];
       double num = 0.0, den = 0.0;
       for (int m = 0; m < n; m++) {
-        const double w = kernel_value(b[m]);
-        num += phi[b[m].j] * w;
+        const double w = kernel_value(i, m);
+        num += phi[bj[m]] * w;
         den += w;
       }
       // phi_i - sum_j (phi_i - phi_j) W_ij / sum_j W_ij, written as the

@@ -42,13 +42,15 @@ class PairTLSPHDamage : public PairTLSPH {
   // read by compute tlsph/damage/atom and fix tlsph/velocity/filter
   double damage(int i) const { return phi[i]; }
   double smoothed_damage(int i) const { return phis[i]; }
-  // the intact bonds of local particle i (valid after a force call)
-  const BondCache *intact_bonds(int i, int &n) const
+  // the partners (particle indices) of the intact bonds of local particle i
+  // (valid after a force call)
+  const int *intact_partners(int i, int &n) const
   {
     n = nbond[i];
-    return &cache[bond_start[i]];
+    return lean.j + bond_start[i];
   }
-  double kernel_value(const BondCache &b) const;
+  // W(|X_ij|) of bond m of local particle i
+  double kernel_value(int i, int m) const;
   double critical_stretch_of(int type) const { return sc[type]; }
 
  protected:

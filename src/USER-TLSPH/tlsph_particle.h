@@ -37,6 +37,69 @@ struct Bond {
   int k;          // slot of the bond in the owner's bond row
 };
 
+/* Bond accessors. The step reads a particle's bonds through one of these,
+   so that one copy of the math serves two layouts:
+     BondRecords  the full record above (set-up, corrections, unit tests);
+     LeanBonds    the step's layout (PairTLSPH): per bond only the partner
+                  index, g_ij and the two kernel weights of the viscous and
+                  hourglass terms, each in its own array (structure of
+                  arrays, CSR over the particles: one Kokkos view each).
+                  X_ij is not stored: it is X0_j - X0_i from the reference
+                  positions X0 of the particles (made consistent with the
+                  periodic images by the caller); the reverse weight
+                  c = V_i w_ij, read only without Newton's third law, is
+                  recomputed from |X_ij|.
+   Interface: partner(m), grad(m) (DIM values), ref(m, X) (DIM values),
+   wv(m), whg(m), reverse_weight(m). */
+struct BondRecords {
+  const Bond *b;
+  TLSPH_INLINE int partner(int m) const { return b[m].j; }
+  TLSPH_INLINE const double *grad(int m) const { return b[m].g; }
+  template <int DIM> TLSPH_INLINE void ref(int m, double *X) const
+  {
+    for (int d = 0; d < DIM; d++) X[d] = b[m].X[d];
+  }
+  TLSPH_INLINE double wv(int m) const { return b[m].wv; }
+  TLSPH_INLINE double whg(int m) const { return b[m].whg; }
+  TLSPH_INLINE double reverse_weight(int m) const { return b[m].c; }
+};
+
+// the lean layout's per-bond arrays (counts: 1, DIM, 2 and 1 per bond)
+struct LeanArrays {
+  int *j;        // partner index in the particle arrays
+  double *g;     // corrected gradient g_ij (DIM per bond)
+  double *w;     // wv, whg (2 per bond; see Bond)
+  int *k;        // slot of the bond in the owner's row of the bond fix
+};
+
+template <int DIM, class Rows> struct LeanBonds {
+  const int *j;
+  const double *g;
+  const double *w;
+  Rows X0;                    // reference positions, X0(j) = X0_j
+  const double *X0i;          // X0_i
+  // for reverse_weight() only (gather form of the stress term)
+  CubicSpline kernel;
+  double Vi;
+  int order;
+  TLSPH_INLINE int partner(int m) const { return j[m]; }
+  TLSPH_INLINE const double *grad(int m) const { return g + DIM * m; }
+  template <int D> TLSPH_INLINE void ref(int m, double *X) const
+  {
+    const double *xj = X0(j[m]);
+    for (int d = 0; d < D; d++) X[d] = xj[d] - X0i[d];
+  }
+  TLSPH_INLINE double wv(int m) const { return w[2 * m]; }
+  TLSPH_INLINE double whg(int m) const { return w[2 * m + 1]; }
+  TLSPH_INLINE double reverse_weight(int m) const
+  {
+    double X[3] = {0.0, 0.0, 0.0};
+    ref<DIM>(m, X);
+    const double r = std::sqrt(dot3(X, X));
+    return Vi * (order == 1 ? -kernel.derivative(r) / r : kernel.value(r));
+  }
+};
+
 // the polynomial basis of the corrected gradient
 template <int DIM, int ORDER> struct Basis {
   static constexpr int size = (ORDER == 1) ? DIM : (DIM == 2 ? 5 : 9);
@@ -201,18 +264,31 @@ TLSPH_INLINE void apply_correction(Bond *b, int nb, const double *Vj, const Cubi
 
 /* F_i = I + sum_j (u_j - u_i) (x) g_ij, with u = x - X and the reference
    bond vector X_ij taken from the bond. x(j) returns x_j. */
+template <int DIM, class Rows, class Bonds>
+TLSPH_INLINE void deformation_gradient_bonds(const Rows &x, int i, const Bonds &b, int nb,
+                                             double *F)
+{
+  const double *xi = x(i);
+  double Fa[DIM * DIM];    // in registers: F may alias nothing the loop reads, but
+  for (int k = 0; k < DIM * DIM; k++) Fa[k] = 0.0;    // the compiler cannot know it
+  for (int m = 0; m < nb; m++) {
+    const double *xj = x(b.partner(m));
+    const double *g = b.grad(m);
+    double X[DIM], du[DIM];
+    b.template ref<DIM>(m, X);
+    for (int d = 0; d < DIM; d++) du[d] = (xj[d] - xi[d]) - X[d];
+    for (int r = 0; r < DIM; r++)
+      for (int c = 0; c < DIM; c++) Fa[DIM * r + c] += du[r] * g[c];
+  }
+  mat_identity(F);
+  for (int r = 0; r < DIM; r++)
+    for (int c = 0; c < DIM; c++) F[3 * r + c] += Fa[DIM * r + c];
+}
+
 template <int DIM, class Rows>
 TLSPH_INLINE void deformation_gradient(const Rows &x, int i, const Bond *b, int nb, double *F)
 {
-  const double *xi = x(i);
-  mat_identity(F);
-  for (int m = 0; m < nb; m++) {
-    const double *xj = x(b[m].j);
-    double du[3];
-    for (int d = 0; d < DIM; d++) du[d] = (xj[d] - xi[d]) - b[m].X[d];
-    for (int r = 0; r < DIM; r++)
-      for (int c = 0; c < DIM; c++) F[3 * r + c] += du[r] * b[m].g[c];
-  }
+  deformation_gradient_bonds<DIM>(x, i, BondRecords{b}, nb, F);
 }
 
 /* From F: strain energy density (returned), the first Piola-Kirchhoff
@@ -293,41 +369,101 @@ struct NoScatter {
   TLSPH_INLINE void operator()(int, const double *) const {}
 };
 
+/* The viscous and hourglass forces of a bond are pair forces: the force on
+   j is minus the force on i (both coefficients below are symmetric in i and
+   j, and X_ji = -X_ij, x_ji = -x_ij).
+   Viscous: the force on i is sv (K_i + K_j) X_ij, with
+     sv = -q_ij V_i V_j (-W'(r)/r) / 2 = -0.5 q_ij Vi wv,
+   q_ij from the approach rate (v_j - v_i).x_ij, measured along the current
+   separation x_ij, not the reference X_ij of the thesis: identical for small
+   deformation, and zero for a rigid rotation (objective). Branch-free:
+   q = 0 for separating pairs (a data-dependent branch is mispredicted half
+   the time). inv_both = 1 / (r2 (r2 + 0.01 h^2)): one division serves both
+   denominators, 1/r2 (hourglass) and 1/(r2 + 0.01 h^2) (viscosity). */
+template <int DIM>
+TLSPH_INLINE double viscous_coefficient(const double *vi, const double *vj, const double *xij,
+                                        double r2, double inv_both, double h, double beta,
+                                        double alpha, double c, double rho, double Vi_wv)
+{
+  double dvX = 0.0;
+  for (int d = 0; d < DIM; d++) dvX += (vj[d] - vi[d]) * xij[d];
+  const double mu = h * (dvX < 0.0 ? dvX : 0.0) * r2 * inv_both;
+  const double q = rho * mu * (beta * mu - alpha * c);
+  return -0.5 * q * Vi_wv;
+}
+
+/* Hourglass: the force on i is sh x_ij, with
+   (delta_ij + delta_ji) |x_ij| = ((F_i + F_j) X_ij - 2 x_ij) . x_ij (see
+   hourglass_force()); Fi, Fj are DIM x DIM blocks. Zero when r2 = 0. */
+template <int DIM>
+TLSPH_INLINE double hourglass_coefficient(const double *Fi, const double *Fj, const double *X,
+                                          const double *xij, double r2, double eps2,
+                                          double inv_both, double gamma_Ebar, double Vi_whg)
+{
+  if (!(r2 > 0.0)) return 0.0;
+  double ex = 0.0;
+  for (int r = 0; r < DIM; r++) {
+    double e = -2.0 * xij[r];
+    for (int c2 = 0; c2 < DIM; c2++) e += (Fi[DIM * r + c2] + Fj[DIM * r + c2]) * X[c2];
+    ex += e * xij[r];
+  }
+  return -0.5 * gamma_Ebar * Vi_whg * ex * (r2 + eps2) * inv_both;
+}
+
+/* Pairs: with Newton's third law (SCATTER) the viscous and hourglass pair
+   forces of a bond need computing once, not from both ends. The caller
+   orders the bonds of i so that the first `nlead` lead: partner j is a
+   ghost, or a local particle after i. particle_force_bonds then computes
+   these terms for the leading bonds only, adds them to i and hands the
+   opposite force of a local partner to pair(j, fv_ij, fh_ij) (f_j -= ...);
+   a ghost partner gets nothing: its owner computes the same pair force from
+   its side. NoPairs: every bond, from both ends. */
+struct NoPairs {
+  static constexpr bool enabled = false;
+  int nlead = -1;
+  int nlocal = 0;
+  TLSPH_INLINE void operator()(int, const double *, const double *) const {}
+};
+
 /* Force on particle i from its bonds, added to fs (stress), fv (viscous)
    and fh (hourglass); fown = V_i P_i s_i must be added to fs separately.
      stress:   - sum_j V_j P_j g_ji  =  - sum_j R_j c_ij p(-X_ij/h)
-     viscous:  - V_i sum_j q_ij (K_i + K_j) V_j grad_i W_ij / 2, with
-               q_ij from the approach rate (v_j - v_i).x_ij (objective)
+     viscous:  - V_i sum_j q_ij (K_i + K_j) V_j grad_i W_ij / 2
      hourglass: Ganzenmueller's pair force along x_ij (tlsph_pair_terms.h)
+   (pair coefficients above). b: the bonds (BondRecords or LeanBonds).
    Accessors x, v return position/velocity rows, pk the packed rows, type(j)
    the particle type; mat[type] the material numbers. When VISIT is set,
    visit(j, xij, fij) receives twice the pair force of the bond that the
-   tally halves (virial tallies).
+   tally halves (virial tallies; a pair force computed on both ranks counts
+   once on each).
    SCATTER (Newton's third law for the stress term): instead of gathering
    - V_j P_j g_ji = - c_ij R_j p(-X_ij/h) from every partner, particle i hands
    its own bond force t_ij = V_i P_i g_ij to the partner, scatter(j, t) doing
    f_j -= t (ghost forces are then summed by LAMMPS's reverse communication):
    DIM^2 instead of DIM x Basis::size multiply-adds per bond, the same sum.
-   Pi (the own stress) is needed with VISIT or SCATTER, otherwise it may be
-   null. */
-template <int DIM, int ORDER, int HG, int VISC, int VISIT, int SCATTER = 0, class Rows,
-          class Types, class Visitor, class Scatter = NoScatter>
-TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const Rows &x,
-                                 const Rows &v, const Rows &pk, const Types &type,
-                                 const PairMaterial *mat, double h, double beta, double gamma,
-                                 const double *Pi, double *fs, double *fv,
-                                 double *fh, const Visitor &visit,
-                                 const Scatter &scatter = Scatter())
+   With SCATTER, pairs (see NoPairs) may hand the viscous and hourglass
+   forces on as well. Pi (the own stress) is needed with VISIT or SCATTER,
+   otherwise it may be null. */
+template <int DIM, int ORDER, int HG, int VISC, int VISIT, int SCATTER = 0, class Bonds,
+          class Rows, class Types, class Visitor, class Scatter = NoScatter, class Pairs = NoPairs>
+TLSPH_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, int nb, const Rows &x,
+                                       const Rows &v, const Rows &pk, const Types &type,
+                                       const PairMaterial *mat, double h, double beta,
+                                       double gamma, const double *Pi, double *fs, double *fv,
+                                       double *fh, const Visitor &visit,
+                                       const Scatter &scatter = Scatter(),
+                                       const Pairs &pairs = Pairs())
 {
   using L = Packed<DIM, ORDER>;
   constexpr int NB = L::NB;
   const double inv_h = 1.0 / h;
   const double eps2 = 0.01 * h * h;
+  constexpr bool half = SCATTER && Pairs::enabled;
   // particle i's own blocks and material, held in registers for the bond loop
   // (local accumulators too: the outputs could alias the particle arrays)
   const double *pi = pk(i);
-  double Fi[DIM * DIM], xi[DIM], vi[DIM];
-  for (int k = 0; k < DIM * DIM; k++) Fi[k] = pi[L::F + k];
+  double Fi[DIM * DIM], Ki[DIM * DIM], xi[DIM], vi[DIM];
+  for (int k = 0; k < DIM * DIM; k++) Fi[k] = pi[L::F + k], Ki[k] = pi[L::K + k];
   const double *xr = x(i), *vr = v(i);
   for (int d = 0; d < DIM; d++) xi[d] = xr[d], vi[d] = vr[d];
   const int ti = type(i);
@@ -335,34 +471,49 @@ TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const 
   double as[DIM], av[DIM], avi[DIM], ah[DIM];
   for (int d = 0; d < DIM; d++) as[d] = av[d] = avi[d] = ah[d] = 0.0;
 
+  // (a) the stress term of every bond; without pairs also the viscous and
+  // hourglass terms (from this end)
   for (int m = 0; m < nb; m++) {
-    const Bond &bm = b[m];
-    const int j = bm.j;
+    const int j = b.partner(m);
+    const double *gm = b.grad(m);
     const double *pj = pk(j);
     double fb[3] = {0.0, 0.0, 0.0};
+    double X[DIM];
+    if (!SCATTER || (!half && (HG || VISC))) b.template ref<DIM>(m, X);
     if (SCATTER) {
       double t[3] = {0.0, 0.0, 0.0};
       for (int r = 0; r < DIM; r++) {
         double own = 0.0;
-        for (int c = 0; c < DIM; c++) own += Pi[3 * r + c] * bm.g[c];
+        for (int c = 0; c < DIM; c++) own += Pi[3 * r + c] * gm[c];
         t[r] = Vi * own;
         // a pair force (+t on i, -t on j) counted once: twice for the halving tally
         if (VISIT) fb[r] = 2.0 * t[r];
       }
       scatter(j, t);
     } else {
-      double s[3] = {-bm.X[0] * inv_h, -bm.X[1] * inv_h, -bm.X[2] * inv_h}, p[NB];
+      double s[3] = {0.0, 0.0, 0.0}, p[NB];
+      for (int d = 0; d < DIM; d++) s[d] = -X[d] * inv_h;
+      const double cm = b.reverse_weight(m);
       Basis<DIM, ORDER>::eval(s, p);
       for (int r = 0; r < DIM; r++) {
         double acc = 0.0;
         for (int c = 0; c < NB; c++) acc += pj[L::R + NB * r + c] * p[c];
-        as[r] -= bm.c * acc;
+        as[r] -= cm * acc;
         if (VISIT) {
           double own = 0.0;
-          for (int c = 0; c < DIM; c++) own += Pi[3 * r + c] * bm.g[c];
-          fb[r] = Vi * own - bm.c * acc;
+          for (int c = 0; c < DIM; c++) own += Pi[3 * r + c] * gm[c];
+          fb[r] = Vi * own - cm * acc;
         }
       }
+    }
+    if (half || !(HG || VISC)) {
+      if (VISIT) {
+        double xij[3] = {0.0, 0.0, 0.0};
+        const double *xj = x(j);
+        for (int d = 0; d < DIM; d++) xij[d] = xj[d] - xi[d];
+        visit(j, xij, fb);
+      }
+      continue;
     }
     const double *xj = x(j);
     double xij[3] = {0.0, 0.0, 0.0};
@@ -371,47 +522,28 @@ TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const 
       xij[d] = xj[d] - xi[d];
       r2 += xij[d] * xij[d];
     }
-    // one division serves both denominators: 1/r2 (hourglass) and
-    // 1/(r2 + 0.01 h^2) (viscosity)
-    const double inv_both = (HG || VISC) ? 1.0 / (r2 * (r2 + eps2)) : 0.0;
+    const double inv_both = 1.0 / (r2 * (r2 + eps2));
     const PairMaterial &mj = mat[type(j)];
     if (VISC) {
-      // approach rate measured along the current separation x_ij, not the
-      // reference X_ij of the thesis: identical for small deformation, and
-      // zero for a rigid rotation (objective). Branch-free: q = 0 for
-      // separating pairs (a data-dependent branch is mispredicted half the time).
-      const double *vj = v(j);
-      double dvX = 0.0;
-      for (int d = 0; d < DIM; d++) dvX += (vj[d] - vi[d]) * xij[d];
-      const double c = 0.5 * (mi.c0 + mj.c0);
-      const double rho = 0.5 * (mi.rho + mj.rho);
-      const double mu = h * (dvX < 0.0 ? dvX : 0.0) * r2 * inv_both;
-      const double alpha = 0.5 * (pi[L::A] + pj[L::A]);
-      const double q = rho * mu * (beta * mu - alpha * c);
-      const double sv = -0.5 * q * Vi * bm.wv;
+      const double sv = viscous_coefficient<DIM>(
+          vi, v(j), xij, r2, inv_both, h, beta, 0.5 * (pi[L::A] + pj[L::A]),
+          0.5 * (mi.c0 + mj.c0), 0.5 * (mi.rho + mj.rho), Vi * b.wv(m));
       // (K_i + K_j) X_ij: the K_i part is applied once after the loop
-      for (int d = 0; d < DIM; d++) avi[d] += sv * bm.X[d];
+      for (int d = 0; d < DIM; d++) avi[d] += sv * X[d];
       for (int r = 0; r < DIM; r++) {
         double acc = 0.0;
-        for (int c2 = 0; c2 < DIM; c2++) acc += pj[L::K + DIM * r + c2] * bm.X[c2];
+        for (int c2 = 0; c2 < DIM; c2++) acc += pj[L::K + DIM * r + c2] * X[c2];
         av[r] += sv * acc;
         if (VISIT) {
           double acci = 0.0;
-          for (int c2 = 0; c2 < DIM; c2++) acci += pi[L::K + DIM * r + c2] * bm.X[c2];
+          for (int c2 = 0; c2 < DIM; c2++) acci += Ki[DIM * r + c2] * X[c2];
           fb[r] += sv * (acc + acci);
         }
       }
     }
-    if (HG && r2 > 0.0) {
-      // (delta_ij + delta_ji) |x_ij| = ((F_i + F_j) X_ij - 2 x_ij) . x_ij, see hourglass_force()
-      double ex = 0.0;
-      for (int r = 0; r < DIM; r++) {
-        double e = -2.0 * xij[r];
-        for (int c2 = 0; c2 < DIM; c2++) e += (Fi[DIM * r + c2] + pj[L::F + DIM * r + c2]) * bm.X[c2];
-        ex += e * xij[r];
-      }
-      const double Ebar = 0.5 * (mi.E + mj.E);
-      const double sh = -0.5 * gamma * Ebar * Vi * bm.whg * ex * (r2 + eps2) * inv_both;
+    if (HG) {
+      const double sh = hourglass_coefficient<DIM>(Fi, pj + L::F, X, xij, r2, eps2, inv_both,
+                                                   gamma * 0.5 * (mi.E + mj.E), Vi * b.whg(m));
       for (int d = 0; d < DIM; d++) {
         ah[d] += sh * xij[d];
         if (VISIT) fb[d] += sh * xij[d];
@@ -419,14 +551,76 @@ TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const 
     }
     if (VISIT) visit(j, xij, fb);
   }
+
+  // (b) pairs: the viscous and hourglass forces of the leading bonds, once
+  if (half && (HG || VISC)) {
+    for (int m = 0; m < pairs.nlead; m++) {
+      const int j = b.partner(m);
+      const double *pj = pk(j);
+      double X[DIM];
+      b.template ref<DIM>(m, X);
+      const double *xj = x(j);
+      double xij[3] = {0.0, 0.0, 0.0};
+      double r2 = 0.0;
+      for (int d = 0; d < DIM; d++) {
+        xij[d] = xj[d] - xi[d];
+        r2 += xij[d] * xij[d];
+      }
+      const double inv_both = 1.0 / (r2 * (r2 + eps2));
+      const PairMaterial &mj = mat[type(j)];
+      double pv[3] = {0.0, 0.0, 0.0}, ph[3] = {0.0, 0.0, 0.0};
+      if (VISC) {
+        const double sv = viscous_coefficient<DIM>(
+            vi, v(j), xij, r2, inv_both, h, beta, 0.5 * (pi[L::A] + pj[L::A]),
+            0.5 * (mi.c0 + mj.c0), 0.5 * (mi.rho + mj.rho), Vi * b.wv(m));
+        for (int r = 0; r < DIM; r++) {
+          double acc = 0.0;
+          for (int c2 = 0; c2 < DIM; c2++) acc += (Ki[DIM * r + c2] + pj[L::K + DIM * r + c2]) * X[c2];
+          pv[r] = sv * acc;
+          av[r] += pv[r];
+        }
+      }
+      if (HG) {
+        const double sh = hourglass_coefficient<DIM>(Fi, pj + L::F, X, xij, r2, eps2, inv_both,
+                                                     gamma * 0.5 * (mi.E + mj.E), Vi * b.whg(m));
+        for (int d = 0; d < DIM; d++) {
+          ph[d] = sh * xij[d];
+          ah[d] += ph[d];
+        }
+      }
+      const bool local = j < pairs.nlocal;
+      if (local) pairs(j, pv, ph);
+      if (VISIT) {
+        // computed once for a local pair (twice for the halving tally), on
+        // both ranks for a ghost partner (once each)
+        const double k = local ? 2.0 : 1.0;
+        double fb[3] = {0.0, 0.0, 0.0};
+        for (int d = 0; d < DIM; d++) fb[d] = k * (pv[d] + ph[d]);
+        visit(j, xij, fb);
+      }
+    }
+  }
   for (int r = 0; r < DIM; r++) {
     fs[r] += as[r];
     fh[r] += ah[r];
     double acc = av[r];
-    if (VISC)
-      for (int c = 0; c < DIM; c++) acc += pi[L::K + DIM * r + c] * avi[c];
+    if (VISC && !half)
+      for (int c = 0; c < DIM; c++) acc += Ki[DIM * r + c] * avi[c];
     fv[r] += acc;
   }
+}
+
+template <int DIM, int ORDER, int HG, int VISC, int VISIT, int SCATTER = 0, class Rows,
+          class Types, class Visitor, class Scatter = NoScatter>
+TLSPH_INLINE void particle_force(int i, double Vi, const Bond *b, int nb, const Rows &x,
+                                 const Rows &v, const Rows &pk, const Types &type,
+                                 const PairMaterial *mat, double h, double beta, double gamma,
+                                 const double *Pi, double *fs, double *fv, double *fh,
+                                 const Visitor &visit, const Scatter &scatter = Scatter())
+{
+  particle_force_bonds<DIM, ORDER, HG, VISC, VISIT, SCATTER>(
+      i, Vi, BondRecords{b}, nb, x, v, pk, type, mat, h, beta, gamma, Pi, fs, fv, fh, visit,
+      scatter);
 }
 
 }    // namespace TLSPH
