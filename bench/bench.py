@@ -377,7 +377,7 @@ def report(a, cases, probes, started, finished, uptime_before, uptime_after, tot
              "serial instance after a short run (bench/memprobe.cpp: `pair->memory_usage()`, "
              "the bond fix's `memory_usage()`, `atom->memory_usage()`). Per-atom arrays are "
              "sized by `atom->nmax`, which LAMMPS grows in chunks, hence above the particle "
-             "count; \"bond cache (min.)\" is entries x sizeof(TLSPH::Bond), without the "
+             "count; \"bond cache (min.)\" is entries x the bytes per bond of the lean layout, without the "
              "headroom the pair keeps.")
     L.append("")
     L.append("| case | particles | LAMMPS line, 1 rank [MB] | bytes/particle (1 rank) "

@@ -11,6 +11,7 @@
 ------------------------------------------------------------------------- */
 
 #include "atom.h"
+#include "domain.h"
 #include "comm.h"
 #include "fix.h"
 #include "force.h"
@@ -28,7 +29,7 @@ using namespace LAMMPS_NS;
 /* out[0..12]: atom, neighbor, comm, update, force, modify, pair,
    bond fix (TLSPH_BONDS), nlocal, nghost, atom->nmax, bonds found at setup
    (all ranks, each counted from both ends = bond-cache entries),
-   sizeof(TLSPH::Bond); all bytes except the counts.
+   the bytes per bond of the lean bond layout; all bytes except the counts.
    Returns 0, or -1 when there is no pair style. */
 extern "C" int tlsph_memprobe(void *handle, double *out)
 {
@@ -51,6 +52,7 @@ extern "C" int tlsph_memprobe(void *handle, double *out)
   out[8] = lmp->atom->nlocal;
   out[9] = lmp->atom->nghost;
   out[10] = lmp->atom->nmax;
-  out[12] = sizeof(TLSPH::Bond);
+  // bytes per bond of the lean layout (pair_tlsph.h): partner, slot, g (dim), two weights
+  out[12] = 2 * sizeof(int) + (lmp->domain->dimension + 2) * sizeof(double);
   return 0;
 }
