@@ -16,16 +16,17 @@ LMP=$(bash "$ROOT/scripts/build-lammps-plugin.sh" bench | tail -n1)
 REPEAT=${COMPARE_REPEAT:-3}
 if [ "${COMPARE_QUICK:-0}" != 0 ]; then n2=60 n3=14 s2=20 s3=5 REPEAT=1; else n2=190 n3=34 s2=200 s3=30; fi
 OUT="$HERE/out/compare"; mkdir -p "$OUT"
-# case: name dim n nsteps codes
-cases=("2D $n2 2 $s2 tlsph smd" "3D $n3 3 $s3 tlsph smd" "3D-damage $n3 3 $s3 tlsphd tlsph")
+# case: name dim n nsteps gradient codes
+cases=("2D $n2 2 $s2 quadratic tlsph smd" "3D $n3 3 $s3 quadratic tlsph smd"
+       "3D-damage $n3 3 $s3 linear tlsphd tlsph")
 : > "$OUT/times.txt"
 for r in $(seq "$REPEAT"); do
   for c in "${cases[@]}"; do
-    set -- $c; name=$1 n=$2 dim=$3 ns=$4; shift 4
+    set -- $c; name=$1 n=$2 dim=$3 ns=$4 grad=$5; shift 5
     for code in "$@"; do
       log="$OUT/$name-$code-$r.log"
       (cd "$OUT" && "$LMP" -in "$HERE/in.compare" -var code "$code" -var dim "$dim" -var n "$n" \
-         -var nsteps "$ns" -var plugin "$PLUGIN" -log none -echo none > "$log" 2>&1) ||
+         -var nsteps "$ns" -var grad "$grad" -var plugin "$PLUGIN" -log none -echo none > "$log" 2>&1) ||
         { tail -5 "$log" >&2; echo "compare: $name $code failed (log $log)" >&2; exit 1; }
       t=$(grep "Loop time" "$log" | tail -1 | awk '{print $4}')
       natoms=$(grep "Loop time" "$log" | tail -1 | awk '{print $(NF-1)}')
@@ -45,6 +46,7 @@ cpu = subprocess.run("lscpu | sed -n 's/^Model name: *//p'", shell=True, capture
 label = {"tlsph": "tlsph (ours, plugin)", "tlsphd": "tlsph/damage (ours, plugin)",
          "smd": "smd/tlsph (MACHDYN)"}
 out = ["# Side by side: one LAMMPS binary, alternating runs", "",
+       "(2D, 3D: our quadratic gradient; 3D-damage: the linear gradient, tlsph/damage's default, for both rows)", "",
        f"- date: {datetime.datetime.now():%Y-%m-%d %H:%M}, commit `{sys.argv[3]}`, machine: {cpu}, 1 rank",
        f"- {len(next(iter(t.values())))} repeat(s), median loop time; bench/in.compare (steel, dx = 1 mm, support 2.66 dx, "
        "alpha 1, gamma 1, dt 5e-8 s); memory: LAMMPS's 'Per MPI rank memory allocation' (avg)", "",

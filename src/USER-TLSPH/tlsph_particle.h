@@ -392,6 +392,20 @@ TLSPH_INLINE double viscous_coefficient(const double *vi, const double *vj, cons
   return -0.5 * q * Vi_wv;
 }
 
+/* current separation x_ij = x_j - x_i, r2 = |x_ij|^2 and
+   inv_both = 1 / (r2 (r2 + eps2)), eps2 = 0.01 h^2 */
+template <int DIM>
+TLSPH_INLINE void pair_separation(const double *xi, const double *xj, double eps2, double *xij,
+                                  double &r2, double &inv_both)
+{
+  r2 = 0.0;
+  for (int d = 0; d < DIM; d++) {
+    xij[d] = xj[d] - xi[d];
+    r2 += xij[d] * xij[d];
+  }
+  inv_both = 1.0 / (r2 * (r2 + eps2));
+}
+
 /* Hourglass: the force on i is sh x_ij, with
    (delta_ij + delta_ji) |x_ij| = ((F_i + F_j) X_ij - 2 x_ij) . x_ij (see
    hourglass_force()); Fi, Fj are DIM x DIM blocks. Zero when r2 = 0. */
@@ -515,14 +529,8 @@ TLSPH_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, int nb,
       }
       continue;
     }
-    const double *xj = x(j);
-    double xij[3] = {0.0, 0.0, 0.0};
-    double r2 = 0.0;
-    for (int d = 0; d < DIM; d++) {
-      xij[d] = xj[d] - xi[d];
-      r2 += xij[d] * xij[d];
-    }
-    const double inv_both = 1.0 / (r2 * (r2 + eps2));
+    double xij[3] = {0.0, 0.0, 0.0}, r2, inv_both;
+    pair_separation<DIM>(xi, x(j), eps2, xij, r2, inv_both);
     const PairMaterial &mj = mat[type(j)];
     if (VISC) {
       const double sv = viscous_coefficient<DIM>(
@@ -559,14 +567,8 @@ TLSPH_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, int nb,
       const double *pj = pk(j);
       double X[DIM];
       b.template ref<DIM>(m, X);
-      const double *xj = x(j);
-      double xij[3] = {0.0, 0.0, 0.0};
-      double r2 = 0.0;
-      for (int d = 0; d < DIM; d++) {
-        xij[d] = xj[d] - xi[d];
-        r2 += xij[d] * xij[d];
-      }
-      const double inv_both = 1.0 / (r2 * (r2 + eps2));
+      double xij[3] = {0.0, 0.0, 0.0}, r2, inv_both;
+      pair_separation<DIM>(xi, x(j), eps2, xij, r2, inv_both);
       const PairMaterial &mj = mat[type(j)];
       double pv[3] = {0.0, 0.0, 0.0}, ph[3] = {0.0, 0.0, 0.0};
       if (VISC) {
