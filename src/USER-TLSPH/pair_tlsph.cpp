@@ -42,6 +42,7 @@ PairTLSPH::PairTLSPH(LAMMPS *lmp) : Pair(lmp)
   dim = 3;
   nmax = 0;
   Q = sumg = F = P = fown = pk = nullptr;
+  gather_rows = 1;
   psi = nullptr;
   nbond = nlead = nullptr;
   bond_start = nullptr;
@@ -496,7 +497,9 @@ void PairTLSPH::init_style()
   bonds->set_cutoff(2.0 * h);
   bonds->rebuild = 1;
 
-  // forward communication: T always, F for hourglass, H for viscosity
+  // forward communication: the packed rows; R only for the gather form
+  // (newton_pair off), which alone reads it
+  gather_rows = force->newton_pair ? 0 : 1;
   comm_forward = packed_size();
   // the packed rows change size with the gradient order and dimension:
   // reallocate the per-atom arrays at the next force call

@@ -130,9 +130,13 @@ class PairTLSPH : public Pair {
   double **F;         // deformation gradient
   double **P;         // first Piola-Kirchhoff stress
   double **fown;      // V_i P_i sum_j g_ij
-  double **pk;        // packed rows R = V P Q, F, K = J F^-T (TLSPH::Packed), communicated
+  double **pk;        // packed rows F, K = J F^-T, alpha_i [, R = V P Q] (TLSPH::Packed),
+                      // communicated
+  int gather_rows;    // 1: rows carry R (newton_pair off: the gather form of the
+                      // stress term reads it); 0: compact rows (set in init_style)
   int packed_size() const
   {
+    if (!gather_rows) return 2 * dim * dim + 1;    // TLSPH::Packed<DIM, ORDER>::compact
     if (dim == 2) return order == 1 ? TLSPH::Packed<2, 1>::size : TLSPH::Packed<2, 2>::size;
     return order == 1 ? TLSPH::Packed<3, 1>::size : TLSPH::Packed<3, 2>::size;
   }

@@ -521,8 +521,8 @@ void PairTLSPHDamage::after_deformation()
   comm_stage = 2;
   comm->reverse_comm_pair(this);
   comm_stage = 0;
-  // alpha_i is the last entry of the packed row (TLSPH::Packed::A)
-  const int ia = packed_size() - 1;
+  // alpha_i in the packed row (TLSPH::Packed::A)
+  const int ia = 2 * dim * dim;
   for (int i = 0; i < nlocal; i++) {
     if (nbond[i] == 0) {
       phis[i] = phi[i];    // a free particle: its own damage (1 once it had bonds)

@@ -34,7 +34,8 @@ inline __attribute__((always_inline)) void PairTLSPH::particle_stress(int i, boo
   }
   if (!(J > 0.0) || !std::isfinite(psi[i])) unstable_particle(i, J);
   TLSPH::pack_row<DIM, ORDER>(atom->vfrac[i], P[i], Q[i], Fi, need_K ? K : nullptr,
-                              alpha_atom ? alpha_atom[i] : alpha, sumg[i], pk[i], fown[i]);
+                              alpha_atom ? alpha_atom[i] : alpha, sumg[i], pk[i], fown[i],
+                              gather_rows != 0);
 }
 
 }    // namespace LAMMPS_NS

@@ -317,33 +317,39 @@ TLSPH_FORCE_INLINE double stress_tensors(const Law &law, int dim, double *F, dou
 
 /* The per-particle row the force pass reads for every partner (and that
    ghosts receive), blocks back to back, row-major:
-     R = V P Q  (DIM x Basis::size),  F (DIM x DIM),  K = J F^-T (DIM x DIM),
-     and the particle's viscosity coefficient alpha_i (tlsph/damage raises it
-     on damaged particles; the pair term uses (alpha_i + alpha_j)/2).
-   2D: 4 + 4 + 4 + 1 (linear) or 10 + 4 + 4 + 1 (quadratic); 3D: 9 + 9 + 9 + 1
-   or 27 + 9 + 9 + 1. */
+     F (DIM x DIM),  K = J F^-T (DIM x DIM),  the particle's viscosity
+     coefficient alpha_i (tlsph/damage raises it on damaged particles; the
+     pair term uses (alpha_i + alpha_j)/2), and last
+     R = V P Q  (DIM x Basis::size), read only by the gather form of the
+     stress term (newton off): with Newton's third law the rows end before
+     R (`compact`), which saves computing R, reading Q and moving R.
+   2D: 4 + 4 + 1 + 4 (linear) or + 10 (quadratic); 3D: 9 + 9 + 1 + 9 or + 27. */
 template <int DIM, int ORDER> struct Packed {
   static constexpr int NB = Basis<DIM, ORDER>::size;
-  static constexpr int R = 0;
-  static constexpr int F = DIM * NB;
-  static constexpr int K = DIM * NB + DIM * DIM;
-  static constexpr int A = DIM * NB + 2 * DIM * DIM;
-  static constexpr int size = A + 1;
+  static constexpr int F = 0;
+  static constexpr int K = DIM * DIM;
+  static constexpr int A = 2 * DIM * DIM;
+  static constexpr int R = A + 1;
+  static constexpr int compact = R;
+  static constexpr int size = R + DIM * NB;
 };
 
-/* Fill particle i's packed row and its own force term V_i P_i s_i. */
+/* Fill particle i's packed row and its own force term V_i P_i s_i; the R
+   block only if with_R (the gather form needs it, see Packed). */
 template <int DIM, int ORDER>
 TLSPH_INLINE void pack_row(double Vi, const double *P, const double *Q, const double *F,
                            const double *K, double alpha_i, const double *sumg, double *row,
-                           double *fown)
+                           double *fown, bool with_R = true)
 {
   using L = Packed<DIM, ORDER>;
   constexpr int NB = L::NB;
   for (int r = 0; r < DIM; r++) {
-    for (int c = 0; c < NB; c++) {
-      double acc = 0.0;
-      for (int k = 0; k < DIM; k++) acc += P[3 * r + k] * Q[NB * k + c];
-      row[L::R + NB * r + c] = Vi * acc;
+    if (with_R) {
+      for (int c = 0; c < NB; c++) {
+        double acc = 0.0;
+        for (int k = 0; k < DIM; k++) acc += P[3 * r + k] * Q[NB * k + c];
+        row[L::R + NB * r + c] = Vi * acc;
+      }
     }
     for (int c = 0; c < DIM; c++) {
       row[L::F + DIM * r + c] = F[3 * r + c];
@@ -460,13 +466,14 @@ struct NoPairs {
    otherwise it may be null. */
 template <int DIM, int ORDER, int HG, int VISC, int VISIT, int SCATTER = 0, class Bonds,
           class Rows, class Types, class Visitor, class Scatter = NoScatter, class Pairs = NoPairs>
-TLSPH_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, int nb, const Rows &x,
-                                       const Rows &v, const Rows &pk, const Types &type,
-                                       const PairMaterial *mat, double h, double beta,
-                                       double gamma, const double *Pi, double *fs, double *fv,
-                                       double *fh, const Visitor &visit,
-                                       const Scatter &scatter = Scatter(),
-                                       const Pairs &pairs = Pairs())
+TLSPH_FORCE_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, int nb,
+                                             const Rows &x, const Rows &v, const Rows &pk,
+                                             const Types &type, const PairMaterial *mat, double h,
+                                             double beta, double gamma, const double *Pi,
+                                             double *fs, double *fv, double *fh,
+                                             const Visitor &visit,
+                                             const Scatter &scatter = Scatter(),
+                                             const Pairs &pairs = Pairs())
 {
   using L = Packed<DIM, ORDER>;
   constexpr int NB = L::NB;

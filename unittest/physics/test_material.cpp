@@ -222,15 +222,18 @@ TEST(Material, StressTensorsProducts)
   }
 }
 
-/* pack_row: R = V P Q (DIM x Basis size), F and K blocks (DIM x DIM), and
-   fown = V P sum_j g_ij, against explicit products, for both orders in 2D
-   and 3D, with a general P, Q, F, K; K null gives a zero K block. */
+/* pack_row: F and K blocks (DIM x DIM), alpha, R = V P Q (DIM x Basis size)
+   and fown = V P sum_j g_ij, against explicit products, for both orders in
+   2D and 3D, with a general P, Q, F, K; K null gives a zero K block; the
+   compact row (with_R false, newton on) is the same up to R and ends there. */
 namespace {
 template <int DIM, int ORDER> void check_pack_row(std::mt19937 &rng)
 {
   using L = TLSPH::Packed<DIM, ORDER>;
   constexpr int NB = TLSPH::Basis<DIM, ORDER>::size;
-  static_assert(L::size == DIM * NB + 2 * DIM * DIM + 1 && L::A == L::size - 1, "layout");
+  static_assert(L::size == DIM * NB + 2 * DIM * DIM + 1 && L::A == 2 * DIM * DIM &&
+                    L::R == L::A + 1 && L::compact == L::R,
+                "layout");
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   double P[9], Fm[9], K[9], Q[TLSPH::QMAX], sumg[3];
   for (int k = 0; k < 9; k++) P[k] = 1e9 * U(rng), Fm[k] = U(rng), K[k] = U(rng);
@@ -260,14 +263,22 @@ template <int DIM, int ORDER> void check_pack_row(std::mt19937 &rng)
   EXPECT_EQ(row[L::size], -7.0);    // nothing written past the row
   TLSPH::pack_row<DIM, ORDER>(V, P, Q, Fm, nullptr, 0.7, sumg, row.data(), fown);
   for (int k = 0; k < DIM * DIM; k++) EXPECT_EQ(row[L::K + k], 0.0);
+  // compact: the same F, K, alpha and fown, nothing written from R on
+  std::vector<double> crow(L::size + 1, -7.0);
+  double cfown[3];
+  TLSPH::pack_row<DIM, ORDER>(V, P, Q, Fm, K, 0.7, sumg, crow.data(), cfown, false);
+  TLSPH::pack_row<DIM, ORDER>(V, P, Q, Fm, K, 0.7, sumg, row.data(), fown);
+  for (int k = 0; k < L::compact; k++) EXPECT_EQ(crow[k], row[k]) << DIM << ORDER << " " << k;
+  for (int k = L::compact; k <= L::size; k++) EXPECT_EQ(crow[k], -7.0) << DIM << ORDER << " " << k;
+  for (int r = 0; r < 3; r++) EXPECT_EQ(cfown[r], fown[r]);
 }
 }    // namespace
 
 TEST(Material, PackedRowProducts)
 {
   std::mt19937 rng(21);
-  // R (DIM x Basis size) + F + K (DIM x DIM each): 4 + 4 + 4 and 10 + 4 + 4
-  // in 2D, 9 + 9 + 9 and 27 + 9 + 9 in 3D
+  // F + K (DIM x DIM each) + alpha + R (DIM x Basis size): 4 + 4 + 1 + 4 and
+  // 4 + 4 + 1 + 10 in 2D, 9 + 9 + 1 + 9 and 9 + 9 + 1 + 27 in 3D
   EXPECT_EQ((TLSPH::Packed<2, 1>::size), 13);
   EXPECT_EQ((TLSPH::Packed<2, 2>::size), 19);
   EXPECT_EQ((TLSPH::Packed<3, 1>::size), 28);
