@@ -8,7 +8,7 @@ hourglass_indicator(dump, dx, dim)
                  max over nearest-neighbour bonds of |F_i X_ij - x_ij| / dx:
                  O(dx / bending radius) for a smooth field, O(1) for a
                  zig-zag (hourglass) pattern that F cannot see
-min_distance(dump)  smallest current distance between two particles
+min_distance(dump)  smallest current distance between two free particles
 richardson(h, f)    observed order and extrapolated value from three
                     resolutions with a constant refinement ratio
 settle_time(t, f, f_ref, tol)  first time after which |f/f_ref - 1| <= tol
@@ -119,7 +119,9 @@ def hourglass_indicator(d, dx, dim):
         return None
     x, X = _positions(d, dim)
     F = np.stack([d[f"c_F[{k}]"] for k in range(1, 10)], axis=1).reshape(-1, 3, 3)[:, :dim, :dim]
-    pairs = cKDTree(X).query_pairs(1.01 * dx, output_type="ndarray")
+    # 1.05 dx: the layers through the depth placed for the exact second
+    # moment (yplace moment) are up to 1.02 dx apart (5 layers)
+    pairs = cKDTree(X).query_pairs(1.05 * dx, output_type="ndarray")
     i, j = pairs[:, 0], pairs[:, 1]
     Xij = X[j] - X[i]
     xij = x[j] - x[i]
@@ -131,9 +133,13 @@ def hourglass_indicator(d, dx, dim):
 
 
 def min_distance(d, dim):
+    """over the free particles (reference x > 0): with the clamp's first
+    column on the clamped face (clamp face) the first free column is dx/2
+    from it by construction"""
     from scipy.spatial import cKDTree
 
-    x, _ = _positions(d, dim)
+    x, X = _positions(d, dim)
+    x = x[X[:, 0] > 1e-9]
     dist, _ = cKDTree(x).query(x, k=2)
     return float(dist[:, 1].min())
 
