@@ -67,36 +67,71 @@ if [ ! -f "$SRC_DIR/src/version.h" ]; then
   exec 9>"$CACHE/.lammps-source.lock"
   flock 9
 fi
+# A deb-src entry is needed when the system's apt sources have none for this
+# version. It goes into a PRIVATE apt configuration under the cache (its own
+# source list, list directory and archive cache), derived from the system's
+# deb entries: the machine's apt configuration and package lists stay as they
+# were. (Earlier versions of this script added
+# /etc/apt/sources.list.d/tlsph-deb-src.sources; it is removed below.)
+APT_PRIV="$CACHE/apt"
+APT_OPTS=()
+private_apt() {
+  mkdir -p "$APT_PRIV/lists/partial" "$APT_PRIV/archives/partial" "$APT_PRIV/sources.list.d"
+  : > "$APT_PRIV/sources.list"
+  local f
+  # one-line format: every "deb" line as "deb-src"
+  for f in /etc/apt/sources.list /etc/apt/sources.list.d/*.list; do
+    [ -f "$f" ] || continue
+    sed -n 's/^[[:space:]]*deb[[:space:]]/deb-src /p' "$f" >> "$APT_PRIV/sources.list"
+  done
+  # deb822 format: the stanzas of type deb, as deb-src
+  for f in /etc/apt/sources.list.d/*.sources; do
+    [ -f "$f" ] || continue
+    case "$(basename "$f")" in tlsph-*) continue ;; esac
+    awk 'BEGIN { RS = ""; ORS = "\n\n" }
+         /(^|\n)Types:[^\n]*(^|[ \t])deb([ \t]|\n|$)/ {
+           sub(/(^|\n)Types:[^\n]*/, "\nTypes: deb-src"); sub(/^\n/, ""); print }' "$f" \
+      > "$APT_PRIV/sources.list.d/$(basename "$f")"
+  done
+  APT_OPTS=(-o "Dir::Etc::SourceList=$APT_PRIV/sources.list"
+            -o "Dir::Etc::SourceParts=$APT_PRIV/sources.list.d"
+            -o "Dir::State::Lists=$APT_PRIV/lists"
+            -o "Dir::Cache::Archives=$APT_PRIV/archives"
+            -o "Dir::Cache::pkgcache=" -o "Dir::Cache::srcpkgcache=")
+  # as root, apt downloads as the user _apt, who cannot enter a home cache:
+  # download as root (what apt falls back to anyway, without the warning)
+  [ "$(id -u)" -ne 0 ] || APT_OPTS+=(-o "APT::Sandbox::User=root")
+  log "apt-get update of a private deb-src list ($APT_PRIV)"
+  "${SUDO[@]}" apt-get "${APT_OPTS[@]}" update -q >&2
+}
+have_src() {
+  local idx
+  idx=$(apt-cache "${APT_OPTS[@]}" showsrc "$SRC_PKG" 2>/dev/null || true)
+  grep -qxF "Version: $SRC_VER" <<<"$idx"
+}
+
+old_entry=/etc/apt/sources.list.d/tlsph-deb-src.sources
+if [ -f "$old_entry" ] && grep -q '^# added by tlsph scripts/setup.sh' "$old_entry"; then
+  log "removing $old_entry (added by an earlier version of this script)"
+  "${SUDO[@]}" rm -f "$old_entry"
+fi
+
+# --check-source: only find the source package through the private list
+# (the test unittest/plugin/check_apt_untouched.sh)
+if [ "${1:-}" = "--check-source" ]; then
+  private_apt
+  have_src || die "no Debian source package $SRC_PKG $SRC_VER through the private deb-src list"
+  log "found $SRC_PKG $SRC_VER through $APT_PRIV"
+  exit 0
+fi
+
 if [ ! -f "$SRC_DIR/src/version.h" ]; then
   log "fetching the Debian source of $SRC_PKG $SRC_VER into $SRC_DIR"
-  # the source index must offer exactly this version: if it does not, add a
-  # deb-src entry for Debian's archive (unless ours is there already), update
-  have_src() {
-    local idx
-    idx=$(apt-cache showsrc "$SRC_PKG" 2>/dev/null || true)
-    grep -qxF "Version: $SRC_VER" <<<"$idx"
-  }
-  have_src || apt_update
-  if ! have_src; then
-    f=/etc/apt/sources.list.d/tlsph-deb-src.sources
-    if [ ! -f "$f" ]; then
-      log "adding $f"
-      "${SUDO[@]}" tee "$f" >/dev/null <<'SOURCES'
-# added by tlsph scripts/setup.sh: the LAMMPS source package matching liblammps
-Types: deb-src
-URIs: http://deb.debian.org/debian
-Suites: bookworm bookworm-updates
-Components: main
-Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
-SOURCES
-    fi
-    apt_updated=0
-    apt_update
-    have_src || die "no Debian source package $SRC_PKG $SRC_VER in the apt sources (deb-src)"
-  fi
+  have_src || private_apt
+  have_src || die "no Debian source package $SRC_PKG $SRC_VER in the apt sources (deb-src)"
   tmp=$(mktemp -d "$CACHE/.lammps-$SRC_VER.XXXXXX")
   trap 'rm -rf "$tmp"' EXIT
-  ( cd "$tmp" && apt-get source -q --download-only "$SRC_PKG=$SRC_VER" >&2 )
+  ( cd "$tmp" && apt-get "${APT_OPTS[@]}" source -q --download-only "$SRC_PKG=$SRC_VER" >&2 )
   dscs=("$tmp"/*.dsc)
   dsc=${dscs[0]}
   [ -f "$dsc" ] || die "apt-get source downloaded no .dsc"
