@@ -26,6 +26,7 @@ command -v dpkg-query >/dev/null 2>&1 || die "this set-up needs Debian 12 (dpkg-
 PACKAGES=(lammps liblammps-dev python3-lammps libeigen3-dev libopenmpi-dev openmpi-bin
           libgtest-dev cmake ninja-build g++ make dpkg-dev python3-numpy python3-matplotlib
           xz-utils
+          python3-sphinx  # the doc/ build test (doc.sphinx_html)
           calculix-ccx)  # ccx: the FE reference of the laminate examples (unittest/fe)
 
 is_installed() {
