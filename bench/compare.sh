@@ -18,7 +18,7 @@ if [ "${COMPARE_QUICK:-0}" != 0 ]; then n2=60 n3=14 s2=20 s3=5 REPEAT=1; else n2
 OUT="$HERE/out/compare"; mkdir -p "$OUT"
 # case: name dim n nsteps gradient codes
 cases=("2D $n2 2 $s2 quadratic tlsph smd" "3D $n3 3 $s3 quadratic tlsph smd"
-       "3D-damage $n3 3 $s3 linear tlsphd tlsph")
+       "3D-damage $n3 3 $s3 linear tlsphd tlsph peri")
 : > "$OUT/times.txt"
 for r in $(seq "$REPEAT"); do
   for c in "${cases[@]}"; do
@@ -31,7 +31,10 @@ for r in $(seq "$REPEAT"); do
       t=$(grep "Loop time" "$log" | tail -1 | awk '{print $4}')
       natoms=$(grep "Loop time" "$log" | tail -1 | awk '{print $(NF-1)}')
       mem=$(grep "Per MPI rank memory" "$log" | tail -1 | awk '{print $(NF-1)}')
-      echo "$name $code $r $natoms $ns $t $mem" >> "$OUT/times.txt"
+      # bonds per particle: peri/pmb's fix reports them; ours are the lattice
+      # partners within the support 2h = 2.66 dx (counted in the report below)
+      nbond=$(sed -n 's/.*bonds\/atom = *\([0-9.]*\).*/\1/p' "$log" | tail -1)
+      echo "$name $code $r $natoms $ns $t $mem ${nbond:--}" >> "$OUT/times.txt"
       echo "compare: $name $code repeat $r: $t s" >&2
     done
   done
@@ -40,18 +43,38 @@ done
 import sys, statistics, collections, datetime, platform, subprocess
 rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
 t = collections.defaultdict(list); meta = {}
-for name, code, r, natoms, ns, sec, mem in rows:
+nbonds = {}
+for name, code, r, natoms, ns, sec, mem, nb in rows:
     t[(name, code)].append(float(sec)); meta[(name, code)] = (int(natoms), int(ns), float(mem))
+    if nb != "-":
+        nbonds[(name, code)] = float(nb)
+
+
+def lattice_bonds(dim, natoms, support=2.66):
+    """mean partners within `support` dx of an n^dim lattice block (our bonds)"""
+    import itertools
+    n = round(natoms ** (1.0 / dim))
+    total = 0
+    for off in itertools.product(range(-3, 4), repeat=dim):
+        if any(off) and sum(o * o for o in off) < support * support:
+            p = 1
+            for o in off:
+                p *= max(n - abs(o), 0)
+            total += p
+    return total / n ** dim
 cpu = subprocess.run("lscpu | sed -n 's/^Model name: *//p'", shell=True, capture_output=True, text=True).stdout.strip()
 label = {"tlsph": "tlsph (ours, plugin)", "tlsphd": "tlsph/damage (ours, plugin)",
-         "smd": "smd/tlsph (MACHDYN)"}
+         "smd": "smd/tlsph (MACHDYN)", "peri": "peri/pmb (PERI, horizon 3.015 dx)"}
 out = ["# Side by side: one LAMMPS binary, alternating runs", "",
-       "(2D, 3D: our quadratic gradient; 3D-damage: the linear gradient, tlsph/damage's default, for both rows)", "",
+       "(2D, 3D: our quadratic gradient; 3D-damage: the linear gradient, tlsph/damage's default, for both of our rows; "
+       "peri/pmb: bond-based peridynamics on the same particles, c = 18 K / (pi delta^4), s00 0.01, no bond breaks; "
+       "a bond evaluation = one partner visited per particle and step, our bonds from the lattice within 2.66 dx, "
+       "peri/pmb's from its fix (it also walks a half list of ~55 partners for its contact forces, not counted))", "",
        f"- date: {datetime.datetime.now():%Y-%m-%d %H:%M}, commit `{sys.argv[3]}`, machine: {cpu}, 1 rank",
        f"- {len(next(iter(t.values())))} repeat(s), median loop time; bench/in.compare (steel, dx = 1 mm, support 2.66 dx, "
        "alpha 1, gamma 1, dt 5e-8 s); memory: LAMMPS's 'Per MPI rank memory allocation' (avg)", "",
-       "| block | code | particles | steps | loop time [s] | M particle-steps/s | speed-up of the first row over this row | memory [kB/particle] |",
-       "|---|---|---:|---:|---:|---:|---:|---:|"]
+       "| block | code | particles | steps | loop time [s] | M particle-steps/s | speed-up of the first row over this row | bonds/particle | M bond-evaluations/s | memory [kB/particle] |",
+       "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
 for name in dict.fromkeys(k[0] for k in t):
     codes = [k[1] for k in t if k[0] == name]
     base = None
@@ -60,7 +83,10 @@ for name in dict.fromkeys(k[0] for k in t):
         med = statistics.median(t[(name, code)])
         rate = natoms * ns / med / 1e6
         base = base or rate
-        out.append(f"| {name} | {label[code]} | {natoms} | {ns} | {med:.3f} | {rate:.3f} | {base / rate:.2f} | {mem * 1048.576 / natoms:.2f} |")
+        dim = 2 if name.startswith("2D") else 3
+        nb = nbonds.get((name, code)) or lattice_bonds(dim, natoms)
+        out.append(f"| {name} | {label[code]} | {natoms} | {ns} | {med:.3f} | {rate:.3f} | {base / rate:.2f} | "
+                   f"{nb:.1f} | {rate * nb:.1f} | {mem * 1048.576 / natoms:.2f} |")
 open(sys.argv[2], "w").write("\n".join(out) + "\n")
 print("\n".join(out))
 PY
