@@ -3,6 +3,7 @@
 ------------------------------------------------------------------------- */
 
 #include "fix_tlsph_dt.h"
+#include "tlsph_input.h"
 
 #include "atom.h"
 #include "error.h"
@@ -22,7 +23,7 @@ using namespace FixConst;
 FixTLSPHDt::FixTLSPHDt(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg), pair(nullptr)
 {
   if (narg < 4) error->all(FLERR, "fix tlsph/dt: expected 'fix ID group tlsph/dt C [every N]'");
-  courant = utils::numeric(FLERR, arg[3], false, lmp);
+  courant = TLSPHInput::number(error, "fix tlsph/dt", "C", arg[3]);
   if (courant <= 0.0 || courant > 1.0)
     error->all(FLERR, "fix tlsph/dt: Courant number C must satisfy 0 < C <= 1, got {}", arg[3]);
   nevery = 1;
@@ -30,7 +31,7 @@ FixTLSPHDt::FixTLSPHDt(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg),
   while (iarg < narg) {
     if (strcmp(arg[iarg], "every") == 0) {
       if (iarg + 1 >= narg) error->all(FLERR, "fix tlsph/dt: keyword 'every' needs a value");
-      nevery = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      nevery = TLSPHInput::integer(error, "fix tlsph/dt", "every", arg[iarg + 1]);
       if (nevery <= 0) error->all(FLERR, "fix tlsph/dt: every must be > 0, got {}", nevery);
       iarg += 2;
     } else

@@ -3,6 +3,7 @@
 ------------------------------------------------------------------------- */
 
 #include "fix_tlsph_velocity_filter.h"
+#include "tlsph_input.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -21,8 +22,8 @@ FixTLSPHVelocityFilter::FixTLSPHVelocityFilter(LAMMPS *lmp, int narg, char **arg
   if (narg != 5)
     error->all(FLERR, "fix tlsph/velocity/filter: expected 'fix ID group tlsph/velocity/filter "
                       "phi_c eps'");
-  phi_c = utils::numeric(FLERR, arg[3], false, lmp);
-  eps = utils::numeric(FLERR, arg[4], false, lmp);
+  phi_c = TLSPHInput::number(error, "fix tlsph/velocity/filter", "phi_c", arg[3]);
+  eps = TLSPHInput::number(error, "fix tlsph/velocity/filter", "eps", arg[4]);
   if (phi_c < 0.0 || phi_c > 1.0)
     error->all(FLERR, "fix tlsph/velocity/filter: phi_c (damage threshold) must be in [0,1], "
                       "got {}", arg[3]);

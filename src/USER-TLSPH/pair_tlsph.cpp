@@ -15,6 +15,7 @@
 #include "pair_tlsph_step.h"
 #include "potential_file_reader.h"
 #include "tlsph_particle.h"
+#include "tlsph_input.h"
 #include "tokenizer.h"
 #include "update.h"
 
@@ -131,17 +132,18 @@ void PairTLSPH::settings(int narg, char **arg)
       error->all(FLERR, "pair_style tlsph: keyword '{}' needs a value", key);
     const char *val = arg[iarg + 1];
     if (key == "h") {
-      h = utils::numeric(FLERR, val, false, lmp);
+      h = TLSPHInput::number(error, "pair_style tlsph", key, val);
       if (h <= 0.0) error->all(FLERR, "pair_style tlsph: h must be > 0 (smoothing length), got {}", val);
       have_h = true;
     } else if (key == "alpha") {
-      alpha = utils::numeric(FLERR, val, false, lmp);
+      alpha = TLSPHInput::number(error, "pair_style tlsph", key, val);
       if (alpha < 0.0) error->all(FLERR, "pair_style tlsph: alpha must be >= 0, got {}", val);
     } else if (key == "beta") {
-      beta = utils::numeric(FLERR, val, false, lmp);
+      beta = TLSPHInput::number(error, "pair_style tlsph", key, val);
       if (beta < 0.0) error->all(FLERR, "pair_style tlsph: beta must be >= 0, got {}", val);
     } else if (key == "gamma") {
-      gamma = utils::numeric(FLERR, val, false, lmp);
+      gamma = TLSPHInput::number(error, "pair_style tlsph", key, val);
+      if (gamma < 0.0) error->all(FLERR, "pair_style tlsph: gamma must be >= 0, got {}", val);
     } else if (key == "plane") {
       if (dim != 2)
         error->all(FLERR, "pair_style tlsph: keyword 'plane' is only allowed with dimension 2 "
@@ -153,7 +155,7 @@ void PairTLSPH::settings(int narg, char **arg)
       if (dim != 2)
         error->all(FLERR, "pair_style tlsph: keyword 'thickness' is only allowed with dimension 2 "
                           "(this simulation is 3D)");
-      thickness = utils::numeric(FLERR, val, false, lmp);
+      thickness = TLSPHInput::number(error, "pair_style tlsph", key, val);
       if (thickness <= 0.0)
         error->all(FLERR, "pair_style tlsph: thickness must be > 0, got {}", val);
     } else if (key == "gradient") {
@@ -161,7 +163,7 @@ void PairTLSPH::settings(int narg, char **arg)
       else if (strcmp(val, "quadratic") == 0) order = 2;
       else error->all(FLERR, "pair_style tlsph: gradient must be 'linear' or 'quadratic', got '{}'", val);
     } else if (key == "cutfactor") {
-      cutfactor = utils::numeric(FLERR, val, false, lmp);
+      cutfactor = TLSPHInput::number(error, "pair_style tlsph", key, val);
       if (cutfactor < 1.0)
         error->all(FLERR, "pair_style tlsph: cutfactor must be >= 1, got {}", val);
     } else {
@@ -208,6 +210,17 @@ bool has_orthotropic_key(const std::vector<std::string> &words)
 }
 }    // namespace
 
+// Gc, sc: accepted (one material file serves both styles) but unused by
+// tlsph; given inline they are most likely meant for tlsph/damage: say so
+bool PairTLSPH::material_key(int, const std::string &key, double, const std::string &where)
+{
+  if (key != "Gc" && key != "sc") return false;
+  if (comm->me == 0 && where.rfind("pair_coeff", 0) == 0)
+    error->warning(FLERR, "{}: '{}' is a fracture value of pair_style tlsph/damage; pair_style "
+                          "tlsph ignores it", where, key);
+  return true;
+}
+
 void PairTLSPH::set_material(int type, const std::vector<std::string> &words,
                              const std::string &where)
 {
@@ -218,7 +231,7 @@ void PairTLSPH::set_material(int type, const std::vector<std::string> &words,
   std::string iso_key, ortho_key;
   for (size_t m = 0; m < words.size(); m += 2) {
     const std::string &key = words[m];
-    const double v = utils::numeric(FLERR, words[m + 1].c_str(), false, lmp);
+    const double v = TLSPHInput::number(error, where, key, words[m + 1].c_str());
     if (key == "E" || key == "nu") {
       if (iso_key.empty()) iso_key = key;
     } else if (key == "theta" || ortho_index(key) >= 0) {
@@ -241,7 +254,7 @@ void PairTLSPH::set_material(int type, const std::vector<std::string> &words,
   bool hE = false, hnu = false, hrho = false;
   for (size_t m = 0; m < words.size(); m += 2) {
     const std::string &key = words[m];
-    const double v = utils::numeric(FLERR, words[m + 1].c_str(), false, lmp);
+    const double v = TLSPHInput::number(error, where, key, words[m + 1].c_str());
     if (key == "E") E = v, hE = true;
     else if (key == "nu") nu = v, hnu = true;
     else if (key == "rho") rho = v, hrho = true;
@@ -279,7 +292,7 @@ void PairTLSPH::set_orthotropic(int type, const std::vector<std::string> &words,
   bool have[9] = {false, false, false, false, false, false, false, false, false}, hrho = false;
   for (size_t m = 0; m < words.size(); m += 2) {
     const std::string &key = words[m];
-    const double v = utils::numeric(FLERR, words[m + 1].c_str(), false, lmp);
+    const double v = TLSPHInput::number(error, where, key, words[m + 1].c_str());
     const int idx = ortho_index(key);
     if (idx >= 0) k[idx] = v, have[idx] = true;
     else if (key == "rho") rho = v, hrho = true;

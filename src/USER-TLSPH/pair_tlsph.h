@@ -101,10 +101,7 @@ class PairTLSPH : public Pair {
   // correction after bonds break
   // the fracture values of a material (Gc, sc) are read by tlsph/damage and
   // ignored here, so that one material file serves both styles
-  virtual bool material_key(int, const std::string &key, double, const std::string &)
-  {
-    return key == "Gc" || key == "sc";
-  }
+  virtual bool material_key(int, const std::string &key, double, const std::string &where);
   virtual const char *extra_material_keys() const { return ""; }
   virtual bool is_extra_material_key(const std::string &, double &) const { return false; }
   virtual void check_material(int, const std::string &) {}

@@ -4,6 +4,7 @@
 ------------------------------------------------------------------------- */
 
 #include "pair_tlsph_damage.h"
+#include "tlsph_input.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -59,7 +60,7 @@ void PairTLSPHDamage::settings(int narg, char **arg)
     const std::string key = arg[iarg];
     if (key == "alpha_d") {
       if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: alpha_d needs a value");
-      alpha_d_value = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      alpha_d_value = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
       if (alpha_d_value < 0.0)
         error->all(FLERR, "pair_style tlsph/damage: alpha_d must be >= 0, got {}", arg[iarg + 1]);
       have_alpha_d = true;
@@ -90,7 +91,8 @@ void PairTLSPHDamage::settings(int narg, char **arg)
         error->all(FLERR, "pair_style tlsph/damage: precrack needs {} numbers in {}D ({})", nval,
                    d, d == 2 ? "x1 y1 x2 y2: a segment" : "three corners of a parallelogram");
       std::array<double, 9> c{};
-      for (int k = 0; k < nval; k++) c[k] = utils::numeric(FLERR, arg[iarg + 1 + k], false, lmp);
+      for (int k = 0; k < nval; k++)
+        c[k] = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1 + k]);
       cracks.push_back(c);
       iarg += 1 + nval;
     } else {

@@ -1,0 +1,268 @@
+#!/usr/bin/env python3
+"""Bad input, systematically (ctest lammps.bad_input): every keyword and
+numeric argument of every USER-TLSPH style, missing, malformed, out of range,
+conflicting, in the wrong dimension or with the wrong atom style, and bad
+potential files. Each case is a small deck run by lmp_tlsph; it must stop
+with a LAMMPS ERROR line whose text matches the case's pattern (which names
+the command and the keyword or value at fault), exit non-zero, within the
+time limit (no hang) and without a crash (signal) or NaN. A pattern that
+starts with WARNING marks an input that is accepted but unused: the run
+must finish normally and print that warning.
+
+    bad_input.py --lmp build/lmp_tlsph --workdir DIR [--list] [-k SUBSTRING]
+
+Prints one line per case and PASSED / FAILED (ctest matches PASSED). The
+single-deck error tests (unittest/lammps/errors, unittest/damage/errors)
+keep their own cases; this table covers the argument grammar as a whole.
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+
+# ---------------------------------------------------------------- decks
+HEAD = {
+    2: ("units si\ndimension 2\nboundary s s p\natom_style {atom_style}\natom_modify map array\n"
+        "lattice sq 0.001\nregion box block 0 6 0 4 -0.5 0.5\ncreate_box 2 box\n"
+        "create_atoms 1 box\nset type 1 volume 1e-6\nset type 1 mass 7.8e-3\n"),
+    3: ("units si\ndimension 3\nboundary s s s\natom_style {atom_style}\natom_modify map array\n"
+        "lattice sc 0.001\nregion box block 0 5 0 4 0 4\ncreate_box 2 box\n"
+        "create_atoms 1 box\nset type 1 volume 1e-9\nset type 1 mass 7.8e-6\n"),
+}
+PAIR = "pair_style tlsph h 0.00133 alpha 1.0 gamma 1.0\n"
+DPAIR = "pair_style tlsph/damage h 0.00133 alpha 1.0 gamma 1.0\n"
+COEFF = "pair_coeff * * E 210e9 nu 0.3 rho 7800\n"
+DCOEFF = "pair_coeff * * E 210e9 nu 0.3 rho 7800 sc 0.01\n"
+TAIL = "fix 1 all nve\ntimestep 1e-8\nrun 0\n"
+ORTHO = "E1 120e9 E2 8e9 E3 8e9 G12 4e9 G13 4e9 G23 3e9 nu12 0.3 nu13 0.3 nu23 0.4 rho 1500"
+
+GOOD_FILE = "steel E 210e9 nu 0.3 rho 7800\nply E1 120e9 E2 8e9 E3 8e9 G12 4e9 G13 4e9 G23 3e9 " \
+            "nu12 0.3 nu13 0.3 nu23 0.4 rho 1500\n"
+
+
+def deck(body, dim=2, atom_style="peri", pair=PAIR, coeff=COEFF, tail=TAIL):
+    """a deck: head, pair_style, pair_coeff, body, tail (None drops a part)"""
+    parts = [HEAD[dim].format(atom_style=atom_style), pair or "", coeff or "", body, tail or ""]
+    return "".join(parts)
+
+
+def ps(args, dim=2):
+    """a pair_style tlsph line with these arguments"""
+    return deck("", dim=dim, pair=f"pair_style tlsph {args}\n")
+
+
+def pds(args, dim=2, coeff=DCOEFF):
+    return deck("", dim=dim, pair=f"pair_style tlsph/damage {args}\n", coeff=coeff)
+
+
+def pc(args, dim=2, pair=PAIR):
+    return deck("", dim=dim, pair=pair, coeff=f"pair_coeff {args}\n")
+
+
+def fx(line, pair=PAIR, coeff=COEFF, dim=2):
+    return deck(line + "\n", dim=dim, pair=pair, coeff=coeff)
+
+
+H = "h 0.00133"
+# (name, deck text, files {name: text}, pattern the ERROR line must match)
+CASES = [
+    # ------------------------------------------------ pair_style tlsph: every keyword
+    ("ps_no_args", ps(""), {}, r"pair_style tlsph: keyword 'h' .*is required"),
+    ("ps_h_missing_value", ps("h"), {}, r"pair_style tlsph: keyword 'h' needs a value"),
+    ("ps_h_word", ps("h abc"), {}, r"pair_style tlsph: h needs a number, got 'abc'"),
+    ("ps_h_half_exponent", ps("h 1e"), {}, r"pair_style tlsph: h needs a number, got '1e'"),
+    ("ps_h_two_signs", ps("h +-1"), {}, r"pair_style tlsph: h needs a number, got '\+-1'"),
+    ("ps_h_two_points", ps("h 1.2.3"), {}, r"pair_style tlsph: h needs a number, got '1.2.3'"),
+    ("ps_h_overflow", ps("h 1e999"), {}, r"pair_style tlsph: h = '1e999' is out of the range"),
+    ("ps_h_zero", ps("h 0"), {}, r"pair_style tlsph: h must be > 0"),
+    ("ps_h_negative", ps("h -0.001"), {}, r"pair_style tlsph: h must be > 0"),
+    ("ps_h_not_given", ps("alpha 1.0"), {}, r"pair_style tlsph: keyword 'h' .*is required"),
+    ("ps_alpha_word", ps(f"{H} alpha x"), {}, r"pair_style tlsph: alpha needs a number, got 'x'"),
+    ("ps_alpha_negative", ps(f"{H} alpha -1"), {}, r"pair_style tlsph: alpha must be >= 0"),
+    ("ps_alpha_missing", ps(f"{H} alpha"), {}, r"pair_style tlsph: keyword 'alpha' needs a value"),
+    ("ps_beta_word", ps(f"{H} beta x"), {}, r"pair_style tlsph: beta needs a number"),
+    ("ps_beta_negative", ps(f"{H} beta -1"), {}, r"pair_style tlsph: beta must be >= 0"),
+    ("ps_gamma_word", ps(f"{H} gamma x"), {}, r"pair_style tlsph: gamma needs a number"),
+    ("ps_gamma_negative", ps(f"{H} gamma -1"), {}, r"pair_style tlsph: gamma must be >= 0"),
+    ("ps_plane_bad", ps(f"{H} plane foo"), {}, r"pair_style tlsph: plane must be 'strain' or 'stress', got 'foo'"),
+    ("ps_plane_in_3d", ps(f"{H} plane strain", dim=3), {},
+     r"pair_style tlsph: keyword 'plane' is only allowed with dimension 2"),
+    ("ps_thickness_zero", ps(f"{H} thickness 0"), {}, r"pair_style tlsph: thickness must be > 0"),
+    ("ps_thickness_word", ps(f"{H} thickness t"), {}, r"pair_style tlsph: thickness needs a number"),
+    ("ps_thickness_in_3d", ps(f"{H} thickness 0.001", dim=3), {},
+     r"pair_style tlsph: keyword 'thickness' is only allowed with dimension 2"),
+    ("ps_gradient_bad", ps(f"{H} gradient cubic"), {},
+     r"pair_style tlsph: gradient must be 'linear' or 'quadratic', got 'cubic'"),
+    ("ps_gradient_missing", ps(f"{H} gradient"), {}, r"pair_style tlsph: keyword 'gradient' needs a value"),
+    ("ps_cutfactor_small", ps(f"{H} cutfactor 0.5"), {}, r"pair_style tlsph: cutfactor must be >= 1"),
+    ("ps_cutfactor_word", ps(f"{H} cutfactor big"), {}, r"pair_style tlsph: cutfactor needs a number"),
+    ("ps_unknown", ps(f"{H} foo 1"), {}, r"pair_style tlsph: unknown keyword 'foo' \(allowed: h, alpha"),
+    # ------------------------------------------------ wrong atom style / set-up
+    ("atom_style_atomic", HEAD[2].format(atom_style="atomic").split("set type")[0] + "mass * 7.8e-3\n"
+     + PAIR + COEFF + TAIL, {}, r"pair tlsph requires atom_style peri"),
+    ("type_without_material", pc("1 1 E 210e9 nu 0.3 rho 7800"), {},
+     r"pair tlsph: atom type 2 has no material"),
+    # ------------------------------------------------ pair_coeff, inline isotropic
+    ("pc_E_word", pc("* * E abc nu 0.3 rho 7800"), {}, r"E needs a number, got 'abc'"),
+    ("pc_E_negative", pc("* * E -1 nu 0.3 rho 7800"), {}, r"E must be > 0"),
+    ("pc_E_missing", pc("* * nu 0.3 rho 7800"), {}, r"missing material value 'E'"),
+    ("pc_nu_missing", pc("* * E 210e9 rho 7800"), {}, r"missing material value 'nu'"),
+    ("pc_rho_missing", pc("* * E 210e9 nu 0.3"), {}, r"missing material value 'rho'"),
+    ("pc_nu_half", pc("* * E 210e9 nu 0.5 rho 7800"), {}, r"nu must satisfy -1 < nu < 0.5, got 0.5"),
+    ("pc_nu_below_minus_one", pc("* * E 210e9 nu -1.5 rho 7800"), {}, r"nu must satisfy -1 < nu < 0.5"),
+    ("pc_rho_zero", pc("* * E 210e9 nu 0.3 rho 0"), {}, r"rho must be > 0"),
+    ("pc_odd_count", pc("* * E 210e9 nu 0.3 rho"), {}, r"keyword/value pairs"),
+    ("pc_unknown_key", pc("* * E 210e9 nu 0.3 rho 7800 G 80e9"), {},
+     r"unknown material keyword 'G'"),
+    ("pc_no_values", pc("* *"), {}, r"pair_coeff tlsph: expected 'I J E value nu value rho value'"),
+    ("pc_bad_type_range", pc("3 3 E 210e9 nu 0.3 rho 7800"), {}, r"Numeric index 3 is out of bounds \(1-2\)"),
+    # accepted (material files serve both styles), but said to be unused
+    ("pc_sc_on_tlsph", pc("* * E 210e9 nu 0.3 rho 7800 sc 0.01"), {},
+     r"WARNING: pair_coeff 1 1: 'sc' is a fracture value of pair_style tlsph/damage; pair_style tlsph ignores it"),
+    # ------------------------------------------------ pair_coeff, orthotropic ply
+    ("ortho_missing_E3", pc("* * " + ORTHO.replace("E3 8e9 ", ""), dim=3), {}, r"missing orthotropic material value.*'E3'"),
+    ("ortho_G12_word", pc("* * " + ORTHO.replace("G12 4e9", "G12 four"), dim=3), {}, r"G12 needs a number, got 'four'"),
+    ("ortho_negative", pc("* * " + ORTHO.replace("E2 8e9", "E2 -8e9"), dim=3), {}, r"pair_coeff 1 1: E2 must be > 0"),
+    ("ortho_theta_word", pc("* * " + ORTHO + " theta ninety", dim=3), {}, r"theta needs a number, got 'ninety'"),
+    ("ortho_mixed_iso", pc("* * " + ORTHO + " E 210e9", dim=3), {}, r"isotropic and orthotropic material keywords cannot be mixed"),
+    ("ortho_nu12_big", pc("* * " + ORTHO.replace("nu12 0.3", "nu12 5"), dim=3), {}, r"nu12 = 5 is out of range: \|nu12\| must be < sqrt\(E1/E2\)"),
+    # ------------------------------------------------ potential (material) files
+    ("file_not_found", pc("* * nosuch.tlsph steel steel"), {}, r"cannot open tlsph material potential file nosuch\.tlsph"),
+    ("file_name_not_found", pc("* * mat.tlsph steel iron"), {"mat.tlsph": GOOD_FILE}, r"material 'iron' \(atom type 2\) not found in file 'mat\.tlsph'"),
+    ("file_too_few_names", pc("* * mat.tlsph steel"), {"mat.tlsph": GOOD_FILE}, r"file 'mat\.tlsph' needs one material name per atom type \(2\), got 1"),
+    ("file_value_word", pc("* * bad.tlsph steel steel"), {"bad.tlsph": "steel E x nu 0.3 rho 7800\n"},
+     r"E needs a number, got 'x'"),
+    ("file_odd_count", pc("* * bad.tlsph steel steel"), {"bad.tlsph": "steel E 210e9 nu 0.3 rho\n"},
+     r"keyword/value pairs"),
+    ("file_unknown_key", pc("* * bad.tlsph steel steel"), {"bad.tlsph": "steel E 210e9 nu 0.3 rho 7800 K 1\n"},
+     r"unknown material keyword 'K'"),
+    ("file_missing_rho", pc("* * bad.tlsph steel steel"), {"bad.tlsph": "steel E 210e9 nu 0.3\n"},
+     r"missing material value 'rho'"),
+    ("file_angle_word", pc("* * mat.tlsph ply@abc ply@0", dim=3), {"mat.tlsph": GOOD_FILE}, r"'ply@abc' \(atom type 1\): the ply angle after '@' must be a number"),
+    ("file_angle_on_isotropic", pc("* * mat.tlsph steel@30 steel"), {"mat.tlsph": GOOD_FILE}, r"'steel@30' \(atom type 1\): a ply angle '@30' needs an orthotropic material"),
+    ("file_empty", pc("* * empty.tlsph steel steel"), {"empty.tlsph": "# nothing\n"}, r"material 'steel' \(atom type 1\) not found in file 'empty\.tlsph'"),
+    # ------------------------------------------------ pair_style tlsph/damage
+    ("pd_alpha_d_word", pds(f"{H} alpha_d x"), {}, r"pair_style tlsph/damage: alpha_d needs a number"),
+    ("pd_alpha_d_negative", pds(f"{H} alpha_d -1"), {}, r"pair_style tlsph/damage: alpha_d must be >= 0"),
+    ("pd_alpha_d_missing", pds(f"{H} alpha_d"), {}, r"pair_style tlsph/damage: alpha_d needs a value"),
+    ("pd_criterion_bad", pds(f"{H} criterion shear"), {}, r"criterion must be 'tension' or 'absolute', got 'shear'"),
+    ("pd_correction_bad", pds(f"{H} correction never"), {}, r"correction must be 'rebuild' or 'setup', got 'never'"),
+    ("pd_precrack_short_2d", pds(f"{H} precrack 0 0 1"), {}, r"precrack needs 4 numbers in 2D"),
+    ("pd_precrack_word_2d", pds(f"{H} precrack 0 0 1 x"), {}, r"precrack needs 4 numbers in 2D"),
+    ("pd_precrack_short_3d", pds(f"{H} precrack 0 0 0 1 1 1", dim=3), {}, r"precrack needs 9 numbers in 3D"),
+    ("pd_h_word", pds("h abc"), {}, r"pair_style tlsph: h needs a number, got 'abc'"),
+    ("pd_unknown", pds(f"{H} foo 1"), {}, r"unknown keyword 'foo'"),
+    ("pd_sc_negative", pds(H, coeff="pair_coeff * * E 210e9 nu 0.3 rho 7800 sc -0.01\n"), {}, r"sc must be > 0"),
+    ("pd_sc_word", pds(H, coeff="pair_coeff * * E 210e9 nu 0.3 rho 7800 sc small\n"), {}, r"sc needs a number, got 'small'"),
+    ("pd_Gc_zero", pds(H, coeff="pair_coeff * * E 210e9 nu 0.3 rho 7800 Gc 0\n"), {}, r"Gc must be > 0"),
+    ("pd_no_fracture_value", pds(H, coeff=COEFF), {}, r"pair tlsph/damage needs a fracture value for every material: Gc .* or sc"),
+    # ------------------------------------------------ fix tlsph/dt
+    ("dt_missing_C", fx("fix dt all tlsph/dt"), {}, r"fix tlsph/dt: expected 'fix ID group tlsph/dt C"),
+    ("dt_C_word", fx("fix dt all tlsph/dt fast"), {}, r"fix tlsph/dt: C needs a number, got 'fast'"),
+    ("dt_C_zero", fx("fix dt all tlsph/dt 0"), {}, r"fix tlsph/dt: Courant number C must satisfy 0 < C <= 1"),
+    ("dt_C_two", fx("fix dt all tlsph/dt 2"), {}, r"fix tlsph/dt: Courant number C must satisfy 0 < C <= 1"),
+    ("dt_every_zero", fx("fix dt all tlsph/dt 0.3 every 0"), {}, r"fix tlsph/dt: every must be > 0"),
+    ("dt_every_float", fx("fix dt all tlsph/dt 0.3 every 1.5"), {}, r"fix tlsph/dt: every needs an integer, got '1.5'"),
+    ("dt_every_missing", fx("fix dt all tlsph/dt 0.3 every"), {}, r"fix tlsph/dt: keyword 'every' needs a value"),
+    ("dt_unknown", fx("fix dt all tlsph/dt 0.3 often 2"), {}, r"fix tlsph/dt: unknown keyword 'often'"),
+    ("dt_without_pair", deck("fix dt all tlsph/dt 0.3\n", pair=None, coeff=None), {}, r"fix tlsph/dt requires pair_style tlsph or tlsph/damage"),
+    # ------------------------------------------------ fix tlsph/relax
+    ("relax_args", fx("fix r all tlsph/relax 1"), {}, r"fix tlsph/relax takes no arguments"),
+    # ------------------------------------------------ fix tlsph/velocity/filter
+    ("filter_count", fx("fix vf all tlsph/velocity/filter 0.5", pair=DPAIR, coeff=DCOEFF), {},
+     r"fix tlsph/velocity/filter: expected 'fix ID group tlsph/velocity/filter phi_c eps'"),
+    ("filter_phi_word", fx("fix vf all tlsph/velocity/filter high 0.1", pair=DPAIR, coeff=DCOEFF), {},
+     r"fix tlsph/velocity/filter: phi_c needs a number, got 'high'"),
+    ("filter_phi_big", fx("fix vf all tlsph/velocity/filter 1.5 0.1", pair=DPAIR, coeff=DCOEFF), {},
+     r"phi_c \(damage threshold\) must be in \[0,1\]"),
+    ("filter_eps_zero", fx("fix vf all tlsph/velocity/filter 0.5 0", pair=DPAIR, coeff=DCOEFF), {},
+     r"eps \(smoothing factor\) must be in \(0,1\]"),
+    ("filter_eps_word", fx("fix vf all tlsph/velocity/filter 0.5 e", pair=DPAIR, coeff=DCOEFF), {},
+     r"fix tlsph/velocity/filter: eps needs a number, got 'e'"),
+    ("filter_without_damage", fx("fix vf all tlsph/velocity/filter 0.5 0.1"), {}, r"fix tlsph/velocity/filter requires pair_style tlsph/damage"),
+    # ------------------------------------------------ computes
+    ("energy_args", fx("compute e all tlsph/energy 1"), {}, r"compute tlsph/energy takes no arguments"),
+    ("damage_atom_args", fx("compute d all tlsph/damage/atom x", pair=DPAIR, coeff=DCOEFF), {},
+     r"compute tlsph/damage/atom takes no arguments"),
+    ("damage_atom_without_damage", fx("compute d all tlsph/damage/atom\nvariable m equal c_d[1][1]"), {},
+     r"compute tlsph/damage/atom requires pair_style tlsph/damage"),
+    ("stress_args", fx("compute s all tlsph/stress/atom 2"), {}, r"compute tlsph/stress/atom takes no arguments"),
+    ("strain_args", fx("compute s all tlsph/strain/atom x"), {}, r"compute tlsph/strain/atom takes no arguments"),
+    ("defgrad_args", fx("compute s all tlsph/defgrad/atom x"), {}, r"compute tlsph/defgrad/atom takes no arguments"),
+    ("stress_without_pair", deck("compute s all tlsph/stress/atom\n", pair=None, coeff=None), {},
+     r"compute tlsph/stress/atom requires pair_style tlsph or tlsph/damage"),
+]
+
+
+def run_case(lmp, workdir, name, text, files, timeout):
+    d = os.path.join(workdir, name)
+    os.makedirs(d, exist_ok=True)
+    for fn, content in files.items():
+        with open(os.path.join(d, fn), "w") as f:
+            f.write(content)
+    with open(os.path.join(d, "in.case"), "w") as f:
+        f.write(text)
+    try:
+        p = subprocess.run([lmp, "-in", "in.case", "-log", "none", "-echo", "none"], cwd=d,
+                           capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return None, "timed out (hang?)"
+    return p.returncode, p.stdout + p.stderr
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--lmp", required=True)
+    ap.add_argument("--workdir", required=True)
+    ap.add_argument("--timeout", type=float, default=60)
+    ap.add_argument("--list", action="store_true")
+    ap.add_argument("-k", default="")
+    a = ap.parse_args()
+    names = [c[0] for c in CASES]
+    assert len(names) == len(set(names)), "duplicate case names"
+    bad = []
+    n = 0
+    for name, text, files, pattern in CASES:
+        if a.k not in name:
+            continue
+        n += 1
+        rc, out = run_case(a.lmp, a.workdir, name, text, files, a.timeout)
+        errs = [l for l in out.splitlines() if re.match(r"ERROR( on proc \d+)?: ", l)]
+        first = errs[0] if errs else ""
+        problems = []
+        if rc is None:
+            problems.append(out)
+        elif pattern.startswith("WARNING"):
+            # an accepted input that the style does not use: a warning, a normal run
+            warns = [l for l in out.splitlines() if re.search(pattern, l)]
+            first = warns[0] if warns else first
+            if rc != 0 or errs:
+                problems.append(f"exit code {rc}, {first}")
+            if not warns:
+                problems.append(f"no warning matching /{pattern}/")
+        else:
+            if rc == 0:
+                problems.append("exit code 0")
+            if rc < 0 or re.search(r"Segmentation|signal \d+|core dumped|terminate called", out):
+                problems.append(f"crashed (exit {rc})")
+            if not errs:
+                problems.append("no ERROR line")
+            elif not re.search(pattern, first):
+                problems.append(f"message does not match /{pattern}/")
+            if re.search(r"\bnan\b", out, re.I):
+                problems.append("NaN in the output")
+        status = "ok  " if not problems else "FAIL"
+        print(f"{status} {name:32s} {first[:150]}")
+        if problems:
+            print("       " + "; ".join(problems))
+            bad.append(name)
+    if bad:
+        print(f"FAILED: {len(bad)} of {n} cases: {' '.join(bad)}")
+        return 1
+    print(f"PASSED: {n} bad-input cases, each a clear error naming the problem")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
