@@ -19,7 +19,8 @@ export TLSPH_PYTHON = $(PYTHON)
 export LMP_TLSPH = $(BUILD_ABS)/lmp_tlsph
 export TLSPH_PLUGIN = $(BUILD_ABS)/tlsphplugin.so
 
-.PHONY: all setup configure build run test bench bench-instructions bench-compare clean
+.PHONY: all setup configure build run test test-sanitize bench bench-instructions bench-compare \
+        bench-pareto bench-roofline clean
 
 all: build
 
@@ -50,6 +51,12 @@ run: build
 test: build
 	ctest --test-dir "$(BUILD)" --output-on-failure --parallel $(JOBS)
 
+# the unit tests, the shortened example decks and a plugin load/run/clear leak
+# check under AddressSanitizer + UndefinedBehaviorSanitizer, in build-sanitize/
+# (about 20 min the first time; not part of `make test`, see README)
+test-sanitize: setup
+	JOBS=$(JOBS) bash scripts/test-sanitize.sh
+
 bench: build
 	@if [ -f bench/run.sh ]; then bash bench/run.sh; \
 	else echo "make bench: bench/run.sh not present yet" >&2; exit 1; fi
@@ -63,6 +70,16 @@ bench-instructions: build
 # LAMMPS once, cached in $(TLSPH_CACHE)); doc/bench.md, "Side by side"
 bench-compare: build
 	bash bench/compare.sh
+
+# speed against error of the benchmarks (doc/pareto.md, doc/pareto-*.png;
+# about an hour of one core; resumable, FORCE=1 reruns)
+bench-pareto: build
+	bash bench/pareto.sh
+
+# the step against this CPU's ceilings (doc/roofline.md, doc/roofline.png;
+# needs perf and valgrind)
+bench-roofline: build
+	bash bench/roofline.sh
 
 clean:
 	rm -rf "$(BUILD)"

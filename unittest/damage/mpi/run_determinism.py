@@ -2,8 +2,9 @@
 """Determinism of the bond damage of pair tlsph/damage (ctest damage.determinism).
 
 Runs in.branch (a shortened crack-branching plate with the velocity filter)
-with lmp_tlsph for N steps under mpirun -np 1, 2 and 4, and once as N/2 steps
-on 2 ranks + write_restart, then read_restart + N/2 steps on 4 ranks
+with lmp_tlsph for N steps under mpirun -np 1, 2, 3 and 4, and once as N/2
+steps on 2 ranks + write_restart, then read_restart + N/2 steps on 1 and on 4
+ranks
 (in.restart: the fixes are issued again, the pair style, its coefficients
 and the broken bonds come from the restart file). From the final state,
 dumped sorted by atom ID, it checks:
@@ -117,7 +118,7 @@ def main():
     ap.add_argument("--srcdir", required=True, help="folder of in.branch, in.common, in.restart")
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--steps", type=int, default=500)
-    ap.add_argument("--np", type=int, nargs="+", default=[1, 2, 4])
+    ap.add_argument("--np", type=int, nargs="+", default=[1, 2, 3, 4])
     ap.add_argument("--timeout", type=float, default=120)
     args = ap.parse_args()
     args.srcdir = os.path.abspath(args.srcdir)
@@ -136,17 +137,20 @@ def main():
             results.append((tag, (cols, final)))
         problems += ["%s: %s" % (tag, p) for p in prob]
 
-    # N/2 on 2 ranks, restart file, N/2 more on 4 ranks
+    # N/2 on 2 ranks, restart file, N/2 more on 1 and on 4 ranks
     rfile = "first_half.restart"
     prob = lammps(args, 2, "first_half", "in.branch",
                   ["-var", "steps", str(half), "-var", "restart", "1"])
+    problems += ["restart written on 2 ranks: %s" % p for p in prob]
     if not prob:
-        prob = lammps(args, 4, "restarted", "in.restart",
-                      ["-var", "steps", str(half), "-var", "file", rfile])
-        if not prob:
-            cols, final, prob = final_state(args, "restarted", 4)
-            results.append(("restarted", (cols, final)))
-    problems += ["restart: %s" % p for p in prob]
+        for np in (1, 4):
+            tag = "restarted_np%d" % np
+            prob = lammps(args, np, tag, "in.restart",
+                          ["-var", "steps", str(half), "-var", "file", rfile])
+            if not prob:
+                cols, final, prob = final_state(args, tag, np)
+                results.append((tag, (cols, final)))
+            problems += ["%s: %s" % (tag, p) for p in prob]
 
     if results:
         ref_tag, ref = results[0]
@@ -162,7 +166,7 @@ def main():
     if problems:
         print("FAILED:\n  " + "\n  ".join(problems))
         return 1
-    print("PASSED: the same bonds broke in all runs (np %s, and restarted)"
+    print("PASSED: the same bonds broke in all runs (np %s, and restarted on 1 and 4)"
           % " ".join(str(x) for x in args.np))
     return 0
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """MPI consistency of the USER-TLSPH styles (ctest lammps.mpi.*).
 
-Runs one input with lmp_tlsph under mpirun -np 1, 2 and 4 (and -np 2 with
+Runs one input with lmp_tlsph under mpirun -np 1, 2, 3 and 4 (and -np 2 with
 'newton off'), then checks on the final state dumped sorted by atom ID:
   - every run finished (exit 0, no ERROR, no NaN in the output),
   - LAMMPS reneighbored during the run and, for np > 1, atoms changed their
@@ -113,7 +113,7 @@ def main():
     ap.add_argument("--lmp", required=True, help="the lmp_tlsph launcher")
     ap.add_argument("--input", required=True)
     ap.add_argument("--workdir", required=True)
-    ap.add_argument("--np", type=int, nargs="+", default=[1, 2, 4])
+    ap.add_argument("--np", type=int, nargs="+", default=[1, 2, 3, 4])
     ap.add_argument("--rtol", type=float, default=1e-10, help="positions and velocities")
     ap.add_argument("--ftol", type=float, default=1e-8, help="forces")
     ap.add_argument("--timeout", type=float, default=120)
