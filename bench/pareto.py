@@ -16,9 +16,7 @@ import glob
 import json
 import math
 import os
-import platform
 import re
-import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -29,6 +27,10 @@ import elastica as el  # noqa: E402
 import fe_reference  # noqa: E402
 import tlsph_analysis as ta  # noqa: E402
 
+sys.path.insert(0, HERE)
+import machine  # noqa: E402
+from machine import cpu_model  # noqa: E402
+
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
@@ -38,32 +40,13 @@ L, H, E, NU = 0.1, 0.01, 210e9, 0.3
 KALTHOFF_EXPERIMENT_DEG = 70.0
 
 
-def cpu_model():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "?"
-
-
 def commit(out=None):
     """the commit the plugin of the runs was built from (pareto.sh writes it), else HEAD"""
     try:
         with open(os.path.join(out, "commit.txt")) as f:
             return f.read().strip()
     except (OSError, TypeError):
-        pass
-    try:
-        c = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
-                           text=True).stdout.strip()
-        dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no"],
-                               capture_output=True, text=True).stdout.strip()
-        return c + ("+changes" if dirty else "")
-    except OSError:
-        return "?"
+        return machine.commit()
 
 
 def cost(prefix):

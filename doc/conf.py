@@ -11,7 +11,7 @@ author = "the tlsph developers"
 copyright = "2026, the tlsph developers"
 master_doc = "index"
 source_suffix = {".rst": "restructuredtext"}
-# Markdown reports (bench.md, pareto.md, roofline-data.md) are read on GitHub
+# Markdown reports (bench.md, pareto.md, roofline.md) are read on GitHub
 # or as plain text, not built
 exclude_patterns = ["*.md", "_build"]
 html_theme = "alabaster"
