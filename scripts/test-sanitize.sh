@@ -2,12 +2,14 @@
 # make test-sanitize: the package and its tests built with AddressSanitizer and
 # UndefinedBehaviorSanitizer (build-sanitize/, cmake -DTLSPH_SANITIZE=ON), then
 #   1. the unit tests (physics, lammps: forces, errors, instability stops, MPI
-#      1/2/4 ranks, restarts; damage) and the shortened example decks
-#      (cantilever-2d, kalthoff-2d coarse, laminate coarse), each failing on a
+#      1/2/3/4 ranks, restarts, bad input; damage; the stability suite) and the
+#      shortened example decks cantilever-2d and kalthoff-2d (the laminate deck
+#      takes over 400 s under the sanitizers: left out), each failing on a
 #      sanitizer report;
 #   2. a leak check: the instrumented plugin loaded into the PLUGIN-enabled
-#      LAMMPS (scripts/build-lammps-plugin.sh), five cycles of a 2D run
-#      (tlsph/damage, bonds breaking) and `clear`, LeakSanitizer at exit: no
+#      LAMMPS (scripts/build-lammps-plugin.sh), five cycles of `plugin load`,
+#      a 2D run (tlsph/damage, bonds breaking, a restart file, then tlsph)
+#      and `clear` (which unloads the plugin), LeakSanitizer at exit: no
 #      leak may have a frame of our code in its allocation stack (LAMMPS's
 #      and Open MPI's own unreleased allocations are listed, not failed).
 # About 20 min on 2 cores the first time (the build), then ~10 min.
@@ -31,26 +33,31 @@ status=0
 
 # 1. tests (the example decks at their shortened, coarse settings)
 ctest --test-dir "$B" --output-on-failure --parallel "$JOBS" \
-      -R '^(physics|lammps|damage)\.|^examples\.(cantilever-2d|kalthoff-2d|laminate-beam)' || status=1
+      -R '^(physics|lammps|damage|stability)\.|^examples\.(cantilever-2d|kalthoff-2d)' || status=1
 
 # 2. leak check of plugin load / run / clear cycles
 lmp=$(bash "$ROOT/scripts/build-lammps-plugin.sh" | tail -n1)
 out="$B/leakcheck"; mkdir -p "$out"
+# (`clear` unloads every plugin in this LAMMPS: each cycle loads it again)
 cat > "$out/in.cycles" <<EOF
-plugin load $B/tlsphplugin.so
 variable c loop 5
 label cycle
+plugin load $B/tlsphplugin.so
 include $ROOT/unittest/sanitize/in.cycle
 clear
 next c
 jump SELF cycle
 EOF
 libasan=$(g++ -print-file-name=libasan.so)
-(cd "$out" && LD_PRELOAD="$libasan" ASAN_OPTIONS="detect_leaks=1:abort_on_error=0" \
+# dlclose made a no-op: the unloaded plugin's frames would show as "<unknown
+# module>" in the leak report and could not be told apart from others
+printf 'int dlclose(void *h) { (void) h; return 0; }\n' > "$out/nodlclose.c"
+gcc -shared -fPIC -o "$out/nodlclose.so" "$out/nodlclose.c"
+(cd "$out" && LD_PRELOAD="$libasan $out/nodlclose.so" ASAN_OPTIONS="detect_leaks=1:abort_on_error=0" \
    LSAN_OPTIONS="report_objects=0:max_leaks=200" \
    "$lmp" -in in.cycles -log cycles.log -echo none > cycles.screen 2> cycles.lsan) || true
-if ! grep -q "^Total wall time" "$out/cycles.log"; then
-  echo "leak check: the plugin cycles did not finish (see $out/cycles.screen, cycles.lsan)"; status=1
+if [ "$(grep -c '^Loop time' "$out/cycles.log")" -ne 10 ]; then
+  echo "leak check: the five plugin cycles did not all run (see $out/cycles.screen, cycles.lsan)"; status=1
 else
   /usr/bin/python3 - "$out/cycles.lsan" <<'PY' || status=1
 import re, sys
