@@ -583,7 +583,7 @@ void PairTLSPH::grow_peratom()
   memory->destroy(nbond);
   memory->destroy(nlead);
   memory->destroy(x0c);
-  memory->create(Q, nmax, QMAX, "tlsph:Q");
+  memory->create(Q, nmax, correction_size(), "tlsph:Q");    // DIM x basis size, <= QMAX
   memory->create(sumg, nmax, 3, "tlsph:sumg");
   memory->create(F, nmax, 9, "tlsph:F");
   memory->create(P, nmax, 9, "tlsph:P");
@@ -1167,7 +1167,8 @@ void PairTLSPH::read_restart_settings(FILE *fp)
 
 double PairTLSPH::memory_usage()
 {
-  double bytes = (double) nmax * ((QMAX + 25 + packed_size()) * sizeof(double) + sizeof(int));
+  double bytes =
+      (double) nmax * ((correction_size() + 25 + packed_size()) * sizeof(double) + sizeof(int));
   bytes += (double) nmax * (3 * sizeof(double) + sizeof(int));    // x0c, nlead
   // lean bond arrays: partner, g (dim), two weights, slot
   bytes += (double) ncache_max * (2 * sizeof(int) + (dim + 2) * sizeof(double));
