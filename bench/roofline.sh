@@ -25,6 +25,8 @@ for t in perf valgrind; do
   command -v $t >/dev/null || { echo "roofline: $t not installed (apt-get install linux-perf valgrind)" >&2; exit 1; }
 done
 
+git -C "$ROOT" describe --always --dirty > "$OUT/commit.txt" 2>/dev/null || echo "?" > "$OUT/commit.txt"
+
 # 1. ceilings
 g++ -O3 -o "$OUT/roofline" "$HERE/roofline.cpp"
 "$OUT/roofline" > "$OUT/ceilings.txt"
