@@ -39,6 +39,9 @@ that stress the method, each with checks that can fail.
                  runs it without hourglass control (_gamma0), where the
                  stress force alone keeps the energy; bench/stability.sh
                  runs both and the period at dx = 2, 1.43, 1 mm
+  mixed_2d       a body of two spacings (1 mm and 0.5 mm) meeting at an
+                 interface: the same F patch test (the interface particles
+                 included) and released dynamics as jitter_<a>
   thin_<n>       a strip one and two particles thick bent by a tip load: the
                  run finishes with det F > 0.5; one particle thick, the gradient
                  falls back to a lower order with a message (documented
@@ -280,22 +283,42 @@ def jitter(a, amp):
     ii, jj = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
     X = (np.c_[ii.ravel(), jj.ravel()] + 0.5) * dx
     X += rng.uniform(-amp, amp, X.shape) * dx
-    V = dx * dx * 0.001
-    d = os.path.join(a.workdir, f"jitter_{amp:g}")
+    V = np.full(len(X), dx * dx * 0.001)
+    m = 2 * 1.33 * dx + (amp + 0.5) * dx
+    inner = np.all((X > m) & (X < n * dx - m), 1)
+    return patch_case(a, f"jitter_{amp:g}", X, V, inner, n * dx)
+
+
+def mixed(a):
+    """two spacings meeting at x = 7 mm: 1 mm on the left, 0.5 mm on the right"""
+    dx, w = 0.001, 0.014
+    xl, yl = np.meshgrid((np.arange(7) + 0.5) * dx, (np.arange(14) + 0.5) * dx, indexing="ij")
+    xr, yr = np.meshgrid(0.007 + (np.arange(14) + 0.5) * dx / 2, (np.arange(28) + 0.5) * dx / 2,
+                         indexing="ij")
+    X = np.r_[np.c_[xl.ravel(), yl.ravel()], np.c_[xr.ravel(), yr.ravel()]]
+    V = np.r_[np.full(xl.size, dx * dx * 0.001), np.full(xr.size, dx * dx * 0.00025)]
+    m = 2 * 1.33 * dx + 0.5 * dx
+    inner = np.all((X > m) & (X < w - m), 1)
+    return patch_case(a, "mixed_2d", X, V, inner, w)
+
+
+def patch_case(a, name, X, V, inner, width):
+    """the F patch test on particles X (volumes V) and 1000 released steps"""
+    d = os.path.join(a.workdir, name)
     os.makedirs(d, exist_ok=True)
-    with open(os.path.join(d, "jitter.data"), "w") as f:
-        f.write(f"jittered lattice\n\n{len(X)} atoms\n1 atom types\n\n"
-                f"-0.002 {n * dx + 0.002} xlo xhi\n-0.002 {n * dx + 0.002} ylo yhi\n-0.0005 0.0005 zlo zhi\n\n"
+    with open(os.path.join(d, "particles.data"), "w") as f:
+        f.write(f"{name}\n\n{len(X)} atoms\n1 atom types\n\n"
+                f"-0.002 {width + 0.002} xlo xhi\n-0.002 {width + 0.002} ylo yhi\n-0.0005 0.0005 zlo zhi\n\n"
                 "Atoms # peri\n\n")
-        for k, (x, y) in enumerate(X):
-            f.write(f"{k + 1} 1 {V} {V * 7800} {x:.12g} {y:.12g} 0\n")
+        for k, ((x, y), v) in enumerate(zip(X, V)):
+            f.write(f"{k + 1} 1 {v:.12g} {v * 7800:.12g} {x:.12g} {y:.12g} 0\n")
     A = np.array([[0.01, 0.004], [-0.003, 0.02]])
     text = f"""units si
 dimension 2
 boundary s s p
 atom_style peri
 atom_modify map array
-read_data jitter.data
+read_data particles.data
 pair_style tlsph h 0.00133 alpha 1.0 gamma 1.0 thickness 0.001
 pair_coeff 1 1 {STEEL}
 compute F all tlsph/defgrad/atom
@@ -317,12 +340,11 @@ thermo_modify format float %.12g norm no
 thermo 25
 run 1000
 """
-    d, rc, out = run(a.lmp, a.workdir, f"jitter_{amp:g}", text)
+    d, rc, out = run(a.lmp, a.workdir, name, text)
     bad = common_checks(rc, out)
     if bad:
         return bad, {}
     r = dump(os.path.join(d, "final.dump"))
-    inner = np.all((X > 2 * 1.33 * dx + (amp + 0.5) * dx) & (X < n * dx - 2 * 1.33 * dx - (amp + 0.5) * dx), 1)
     Fm = np.c_[r["c_F[1]"], r["c_F[2]"], r["c_F[4]"], r["c_F[5]"]]
     # displace_atoms moves x first, then evaluates uy at the moved x: the
     # imposed map is y' = y + A10 x' + A11 y with x' = x + A00 x + A01 y
@@ -493,6 +515,7 @@ CASES = {
     "vibration_2d_2_gamma0": lambda a: vibration_2d(a, 0.002, 0.0),
     "vibration_2d_1.43_gamma0": lambda a: vibration_2d(a, 0.01 / 7, 0.0),
     "vibration_2d_1_gamma0": lambda a: vibration_2d(a, 0.001, 0.0),
+    "mixed_2d": mixed,
     "thin_1": lambda a: thin(a, 1),
     "thin_2": lambda a: thin(a, 2),
 }
