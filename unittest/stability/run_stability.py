@@ -119,6 +119,14 @@ def common_checks(rc, out):
     return bad
 
 
+def run_checked(a, name, text, extra=()):
+    """run a case deck; (workdir, output, problems, thermo names, thermo rows)"""
+    d, rc, out = run(a.lmp, a.workdir, name, text, extra)
+    bad = common_checks(rc, out)
+    names, T = (None, None) if bad else thermo(out)
+    return d, out, bad, names, T
+
+
 # ---------------------------------------------------------------- cases
 def spin_2d(a):
     n, dx, vedge = 12, 0.001, 300.0
@@ -136,8 +144,6 @@ variable vx atom -{w}*(y-{xc})
 variable vy atom {w}*(x-{xc})
 velocity all set v_vx v_vy NULL units box
 compute e all tlsph/energy
-variable Lz equal mass(all)*0
-compute r all property/atom x y vx vy mass
 variable am atom mass*((x-{xc})*vy-(y-{xc})*vx)
 compute Lz all reduce sum v_am
 fix 1 all nve
@@ -152,11 +158,9 @@ undump d0
 run {steps}
 write_dump all custom final.dump id x y modify sort id
 """
-    d, rc, out = run(a.lmp, a.workdir, "spin_2d", text)
-    bad = common_checks(rc, out)
+    d, out, bad, names, T = run_checked(a, "spin_2d", text)
     if bad:
         return bad, {}
-    names, T = thermo(out)
     Es, Ek, Lz = T[:, names.index("c_e[1]")], T[:, names.index("c_e[4]")], T[:, names.index("c_Lz")]
     ratio = (Es / Ek).max()
     bound = 3 * (vedge / C0_2D) ** 2
@@ -203,11 +207,9 @@ thermo 20
 run 1000
 """
     name = f"incompressible_{nu}"
-    d, rc, out = run(a.lmp, a.workdir, name, text)
-    bad = common_checks(rc, out)
+    d, out, bad, names, T = run_checked(a, name, text)
     if bad:
         return bad, {}
-    names, T = thermo(out)
     et, detF = T[:, names.index("v_etot")], T[:, names.index("c_detF")]
     vals = {"E_total max / E_0": et.max() / et[0], "min det F": detF.min(),
             "dt (end)": T[-1, names.index("Dt")]}
@@ -238,11 +240,9 @@ thermo_modify format float %.12g norm no lost ignore
 thermo 50
 run 2000
 """
-    d, rc, out = run(a.lmp, a.workdir, "fragment_2d", text)
-    bad = common_checks(rc, out)
+    d, out, bad, names, T = run_checked(a, "fragment_2d", text)
     if bad:
         return bad, {}
-    names, T = thermo(out)
     es, ek, intact = T[:, names.index("c_e[1]")], T[:, names.index("c_e[4]")], T[:, names.index("c_intact")]
     e0 = ek[0] + es[0]
     vals = {"intact bond ends at the end": intact[-1], "max (E_s + E_k) / E_0": ((es + ek) / e0).max(),
@@ -257,15 +257,14 @@ run 2000
 def kalthoff(a, v0):
     ex = os.path.join(a.examples, "kalthoff-2d")
     name = f"kalthoff_{v0:g}"
-    d, rc, out = run(a.lmp, a.workdir, name, open(os.path.join(ex, "in.kalthoff-2d")).read(),
-                     extra=["-var", "dx", "0.00166666666666667", "-var", "v0", str(v0),
-                            "-var", "tend", "40e-6", "-var", "timg", "0", "-var", "out", name,
-                            "-var", "matfile", os.path.join(a.examples, "..", "potentials",
-                                                            "tlsph_materials.tlsph")])
-    bad = common_checks(rc, out)
+    deck = open(os.path.join(ex, "in.kalthoff-2d")).read()
+    matfile = os.path.join(a.examples, "..", "potentials", "tlsph_materials.tlsph")
+    d, out, bad, names, T = run_checked(
+        a, name, deck, extra=["-var", "dx", "0.00166666666666667", "-var", "v0", str(v0),
+                              "-var", "tend", "40e-6", "-var", "timg", "0", "-var", "out", name,
+                              "-var", "matfile", matfile])
     if bad:
         return bad, {}
-    names, T = thermo(out)
     esum, W = T[:, names.index("v_esum")], T[:, names.index("v_W")]
     # the deck's balance (examples/kalthoff-2d/summarise.py): the largest
     # excess (E - W) / max W; E includes the prescribed impactor's own kinetic
@@ -340,8 +339,7 @@ thermo_modify format float %.12g norm no
 thermo 25
 run 1000
 """
-    d, rc, out = run(a.lmp, a.workdir, name, text)
-    bad = common_checks(rc, out)
+    d, out, bad, names, T = run_checked(a, name, text)
     if bad:
         return bad, {}
     r = dump(os.path.join(d, "final.dump"))
@@ -352,7 +350,6 @@ run 1000
     ferr = np.abs(Fm[inner] - Fexp).max()
     f = np.hypot(r["fx"], r["fy"])
     frel = f[inner].max() / f[~inner].max()
-    names, T = thermo(out)
     et, detF = T[:, names.index("v_etot")], T[:, names.index("c_detF")]
     vals = {"interior particles": int(inner.sum()), "max |F - F_affine| (interior)": ferr,
             "max |f| interior / max |f| boundary (uniform stress; reported)": frel,
@@ -439,13 +436,11 @@ thermo     {max(1, int(T_t / dt / 40))}
 run        {steps}
 """
     name = f"vibration_2d_{dx * 1e3:.3g}" + ("" if gamma == 1.0 else f"_gamma{gamma:g}")
-    d, rc, out = run(a.lmp, a.workdir, name, text,
-                     extra=["-var", "dx", str(dx), "-var", "alpha", "0", "-var", "gamma", str(gamma),
-                            "-var", "common", os.path.join(a.examples, "common")])
-    bad = common_checks(rc, out)
+    d, out, bad, names, T = run_checked(
+        a, name, text, extra=["-var", "dx", str(dx), "-var", "alpha", "0", "-var", "gamma",
+                              str(gamma), "-var", "common", os.path.join(a.examples, "common")])
     if bad:
         return bad, {}
-    names, T = thermo(out)
     tt, uy, et = T[:, names.index("Time")], T[:, names.index("c_tipy")], T[:, names.index("v_etot")]
     y = uy - uy.mean()
     up = [tt[k] - y[k] * (tt[k + 1] - tt[k]) / (y[k + 1] - y[k])
@@ -484,11 +479,9 @@ thermo_modify format float %.12g norm no
 thermo 200
 run 4000
 """
-    d, rc, out = run(a.lmp, a.workdir, f"thin_{rows}", text)
-    bad = common_checks(rc, out)
+    d, out, bad, names, T = run_checked(a, f"thin_{rows}", text)
     if bad:
         return bad, {}
-    names, T = thermo(out)
     detF = T[:, names.index("c_detF")]
     fallback = re.search(r"pair tlsph: (\d+) particle\(s\) have too few or degenerate partners", out)
     vals = {"min det F": detF.min(), "fallback message": fallback.group(0) if fallback else None}
