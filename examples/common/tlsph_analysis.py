@@ -99,7 +99,7 @@ def read_dump(path):
         lines = f.readlines()
     k = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))
     names = lines[k].split()[2:]
-    a = np.loadtxt(lines[k + 1:])
+    a = np.loadtxt(lines[k + 1:], ndmin=2)
     a = a[np.argsort(a[:, 0])]
     return {n: a[:, j] for j, n in enumerate(names)}
 

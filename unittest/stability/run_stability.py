@@ -59,6 +59,10 @@ import sys
 
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "examples", "common"))
+from tlsph_analysis import read_dump  # noqa: E402
+
 STEEL = "E 210e9 nu 0.3 rho 7800"
 C0_2D = math.sqrt(210e9 * 0.7 / (1.3 * 0.4) / 7800)      # plane strain P-wave speed
 
@@ -90,16 +94,6 @@ def thermo(out):
         elif cur:
             cur = None
     return names, np.array(rows)
-
-
-def dump(path):
-    with open(path) as f:
-        lines = f.readlines()
-    k = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))
-    cols = lines[k].split()[2:]
-    a = np.loadtxt(lines[k + 1:], ndmin=2)
-    a = a[np.argsort(a[:, 0])]
-    return {c: a[:, j] for j, c in enumerate(cols)}
 
 
 def block_2d(nx, ny, dx=0.001, t=0.001):
@@ -167,7 +161,7 @@ write_dump all custom final.dump id x y modify sort id
     half = len(Es) // 2
     growth = Es[half:].max() / max(Es[:half].max(), 1e-300)
     dL = abs(Lz[-1] - Lz[0]) / abs(Lz[0])
-    r0, r1 = dump(os.path.join(d, "ref.dump")), dump(os.path.join(d, "final.dump"))
+    r0, r1 = read_dump(os.path.join(d, "ref.dump")), read_dump(os.path.join(d, "final.dump"))
     P = np.c_[r0["x"], r0["y"]]
     Q = np.c_[r1["x"], r1["y"]]
     P0, Q0 = P - P.mean(0), Q - Q.mean(0)
@@ -342,7 +336,7 @@ run 1000
     d, out, bad, names, T = run_checked(a, name, text)
     if bad:
         return bad, {}
-    r = dump(os.path.join(d, "final.dump"))
+    r = read_dump(os.path.join(d, "final.dump"))
     Fm = np.c_[r["c_F[1]"], r["c_F[2]"], r["c_F[4]"], r["c_F[5]"]]
     # displace_atoms moves x first, then evaluates uy at the moved x: the
     # imposed map is y' = y + A10 x' + A11 y with x' = x + A00 x + A01 y
