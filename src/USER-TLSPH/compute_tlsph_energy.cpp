@@ -45,7 +45,8 @@ void ComputeTLSPHEnergy::compute_vector()
       mine[0] += vfrac[i] * pair->strain_energy_density(i);
       double whg, wvisc;
       bonds->work_now(i, whg, wvisc);
-      mine[1] += whg;
+      // the thesis's form: the tallied work; the conservative form: its energy
+      mine[1] += whg + pair->hourglass_energy(i);
       mine[2] += wvisc;
       mine[3] += 0.5 * rmass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
     }

@@ -44,7 +44,7 @@ PairTLSPH::PairTLSPH(LAMMPS *lmp) : Pair(lmp)
   nmax = 0;
   Q = sumg = F = P = fown = pk = nullptr;
   gather_rows = 1;
-  psi = nullptr;
+  psi = ehg = nullptr;
   nbond = nlead = nullptr;
   bond_start = nullptr;
   lean = TLSPH::LeanArrays{nullptr, nullptr, nullptr, nullptr};
@@ -75,6 +75,7 @@ PairTLSPH::~PairTLSPH()
   memory->destroy(fown);
   memory->destroy(pk);
   memory->destroy(psi);
+  memory->destroy(ehg);
   memory->destroy(nbond);
   memory->destroy(nlead);
   memory->destroy(bond_start);
@@ -102,8 +103,9 @@ void PairTLSPH::allocate()
 }
 
 /* ----------------------------------------------------------------------
-   pair_style tlsph h VALUE [alpha A] [beta B] [gamma G] [plane strain|stress]
-                             [cutfactor C]
+   pair_style tlsph h VALUE [alpha A] [beta B] [gamma G]
+                            [hourglass thesis|conservative] [plane strain|stress]
+                            [thickness T] [gradient linear|quadratic] [cutfactor C]
 ------------------------------------------------------------------------- */
 
 // the documented defaults of pair_style tlsph (doc/pair_tlsph.rst, "Default")
@@ -113,6 +115,7 @@ void PairTLSPH::set_defaults()
   alpha = 1.0;
   beta = 0.0;
   gamma = 1.0;
+  hg_form = 1;
   plane_stress = 0;
   cutfactor = 1.1;
   order = 2;
@@ -144,6 +147,11 @@ void PairTLSPH::settings(int narg, char **arg)
     } else if (key == "gamma") {
       gamma = TLSPHInput::number(error, "pair_style tlsph", key, val);
       if (gamma < 0.0) error->all(FLERR, "pair_style tlsph: gamma must be >= 0, got {}", val);
+    } else if (key == "hourglass") {
+      if (strcmp(val, "thesis") == 0) hg_form = 1;
+      else if (strcmp(val, "conservative") == 0) hg_form = 2;
+      else error->all(FLERR, "pair_style tlsph: hourglass must be 'thesis' or 'conservative', got "
+                             "'{}'", val);
     } else if (key == "plane") {
       if (dim != 2)
         error->all(FLERR, "pair_style tlsph: keyword 'plane' is only allowed with dimension 2 "
@@ -168,8 +176,8 @@ void PairTLSPH::settings(int narg, char **arg)
         error->all(FLERR, "pair_style tlsph: cutfactor must be >= 1, got {}", val);
     } else {
       error->all(FLERR,
-                 "pair_style tlsph: unknown keyword '{}' (allowed: h, alpha, beta, gamma, plane, "
-                 "thickness, gradient, cutfactor)", key);
+                 "pair_style tlsph: unknown keyword '{}' (allowed: h, alpha, beta, gamma, hourglass, "
+                 "plane, thickness, gradient, cutfactor)", key);
     }
     iarg += 2;
   }
@@ -580,6 +588,7 @@ void PairTLSPH::grow_peratom()
   memory->destroy(fown);
   memory->destroy(pk);
   memory->destroy(psi);
+  memory->destroy(ehg);
   memory->destroy(nbond);
   memory->destroy(nlead);
   memory->destroy(x0c);
@@ -590,6 +599,7 @@ void PairTLSPH::grow_peratom()
   memory->create(fown, nmax, 3, "tlsph:fown");
   memory->create(pk, nmax, packed_size(), "tlsph:packed");
   memory->create(psi, nmax, "tlsph:psi");
+  memory->create(ehg, nmax, "tlsph:ehg");
   memory->create(nbond, nmax, "tlsph:nbond");
   memory->create(nlead, nmax, "tlsph:nlead");
   memory->create(x0c, nmax, 3, "tlsph:x0c");
@@ -826,13 +836,13 @@ struct PairForces {
   static constexpr bool enabled = true;
   int nlead;
   int nlocal;
-  double **f, **f_hg, **f_visc;
+  double **f, **f_hg, **f_visc;    // f_hg null: the hourglass force is not tallied
   void operator()(int j, const double *pv, const double *ph) const
   {
     for (int d = 0; d < 3; d++) {
       f[j][d] -= pv[d] + ph[d];
       f_visc[j][d] -= pv[d];
-      f_hg[j][d] -= ph[d];
+      if (f_hg) f_hg[j][d] -= ph[d];
     }
   }
 };
@@ -915,7 +925,8 @@ void PairTLSPH::compute_forces()
   // forces: the tallies are sums
   for (int i = 0; i < nlocal; i++)
     for (int d = 0; d < 3; d++) f_hg[i][d] = f_visc[i][d] = 0.0;
-  PairForces pairs{0, nlocal, f, f_hg, f_visc};
+  // the conservative hourglass form has an energy (ehg): its work is not tallied
+  PairForces pairs{0, nlocal, f, HG == 2 ? nullptr : f_hg, f_visc};
   for (int i = 0; i < nlocal; i++) {
     double fs[3] = {fown[i][0], fown[i][1], fown[i][2]}, fv[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
     if (SCATTER) {
@@ -930,7 +941,7 @@ void PairTLSPH::compute_forces()
     }
     for (int d = 0; d < DIM; d++) f[i][d] += fs[d] + fv[d] + fh[d];
     for (int d = 0; d < 3; d++) {
-      f_hg[i][d] += fh[d];
+      if (HG != 2) f_hg[i][d] += fh[d];
       f_visc[i][d] += fv[d];
     }
   }
@@ -939,27 +950,27 @@ void PairTLSPH::compute_forces()
 template <int DIM, int ORDER>
 void PairTLSPH::dispatch_forces(int hg, int visc, int vir, int newton)
 {
+  if (hg == 0) dispatch_forces_hg<DIM, ORDER, 0>(visc, vir, newton);
+  else if (hg == 1) dispatch_forces_hg<DIM, ORDER, 1>(visc, vir, newton);
+  else dispatch_forces_hg<DIM, ORDER, 2>(visc, vir, newton);
+}
+
+template <int DIM, int ORDER, int HG>
+void PairTLSPH::dispatch_forces_hg(int visc, int vir, int newton)
+{
   // newton_pair on: the stress term is scattered to the partners and LAMMPS
   // sums the ghost forces; off: every particle gathers its whole force
-  const int key = hg + 2 * visc + 4 * vir + 8 * newton;
+  const int key = visc + 2 * vir + 4 * newton;
   switch (key) {
     // clang-format off
-    case 0:  compute_forces<DIM, ORDER, 0, 0, 0, 0>(); break;
-    case 1:  compute_forces<DIM, ORDER, 1, 0, 0, 0>(); break;
-    case 2:  compute_forces<DIM, ORDER, 0, 1, 0, 0>(); break;
-    case 3:  compute_forces<DIM, ORDER, 1, 1, 0, 0>(); break;
-    case 4:  compute_forces<DIM, ORDER, 0, 0, 1, 0>(); break;
-    case 5:  compute_forces<DIM, ORDER, 1, 0, 1, 0>(); break;
-    case 6:  compute_forces<DIM, ORDER, 0, 1, 1, 0>(); break;
-    case 7:  compute_forces<DIM, ORDER, 1, 1, 1, 0>(); break;
-    case 8:  compute_forces<DIM, ORDER, 0, 0, 0, 1>(); break;
-    case 9:  compute_forces<DIM, ORDER, 1, 0, 0, 1>(); break;
-    case 10: compute_forces<DIM, ORDER, 0, 1, 0, 1>(); break;
-    case 11: compute_forces<DIM, ORDER, 1, 1, 0, 1>(); break;
-    case 12: compute_forces<DIM, ORDER, 0, 0, 1, 1>(); break;
-    case 13: compute_forces<DIM, ORDER, 1, 0, 1, 1>(); break;
-    case 14: compute_forces<DIM, ORDER, 0, 1, 1, 1>(); break;
-    case 15: compute_forces<DIM, ORDER, 1, 1, 1, 1>(); break;
+    case 0: compute_forces<DIM, ORDER, HG, 0, 0, 0>(); break;
+    case 1: compute_forces<DIM, ORDER, HG, 1, 0, 0>(); break;
+    case 2: compute_forces<DIM, ORDER, HG, 0, 1, 0>(); break;
+    case 3: compute_forces<DIM, ORDER, HG, 1, 1, 0>(); break;
+    case 4: compute_forces<DIM, ORDER, HG, 0, 0, 1>(); break;
+    case 5: compute_forces<DIM, ORDER, HG, 1, 0, 1>(); break;
+    case 6: compute_forces<DIM, ORDER, HG, 0, 1, 1>(); break;
+    case 7: compute_forces<DIM, ORDER, HG, 1, 1, 1>(); break;
       // clang-format on
   }
 }
@@ -1004,7 +1015,7 @@ void PairTLSPH::compute(int eflag, int vflag)
 
   comm->forward_comm_pair(this);
 
-  const int hg = (gamma != 0.0);
+  const int hg = (gamma != 0.0) ? hg_form : 0;
   const int visc = viscosity_active() ? 1 : 0;
   const int vir = vflag_global ? 1 : 0;
   const int nt = force->newton_pair ? 1 : 0;
@@ -1020,7 +1031,7 @@ void PairTLSPH::compute(int eflag, int vflag)
     const int nlocal = atom->nlocal;
     double *vfrac = atom->vfrac;
     for (int i = 0; i < nlocal; i++) {
-      const double e = vfrac[i] * psi[i];
+      const double e = vfrac[i] * psi[i] + (hg_form == 2 && gamma != 0.0 ? ehg[i] : 0.0);
       if (eflag_global) eng_vdwl += e;
       if (eflag_atom) eatom[i] += e;
     }
@@ -1139,20 +1150,20 @@ void PairTLSPH::read_restart(FILE *fp)
 
 void PairTLSPH::write_restart_settings(FILE *fp)
 {
-  double v[8] = {h,         alpha, beta, gamma, (double) plane_stress,
-                 cutfactor, (double) order, thickness};
-  fwrite(v, sizeof(double), 8, fp);
+  double v[9] = {h,         alpha, beta, gamma, (double) plane_stress,
+                 cutfactor, (double) order, thickness, (double) hg_form};
+  fwrite(v, sizeof(double), 9, fp);
   fwrite(&dim, sizeof(int), 1, fp);
 }
 
 void PairTLSPH::read_restart_settings(FILE *fp)
 {
-  double v[8];
+  double v[9];
   if (comm->me == 0) {
-    utils::sfread(FLERR, v, sizeof(double), 8, fp, nullptr, error);
+    utils::sfread(FLERR, v, sizeof(double), 9, fp, nullptr, error);
     utils::sfread(FLERR, &dim, sizeof(int), 1, fp, nullptr, error);
   }
-  MPI_Bcast(v, 8, MPI_DOUBLE, 0, world);
+  MPI_Bcast(v, 9, MPI_DOUBLE, 0, world);
   MPI_Bcast(&dim, 1, MPI_INT, 0, world);
   h = v[0];
   alpha = v[1];
@@ -1162,13 +1173,14 @@ void PairTLSPH::read_restart_settings(FILE *fp)
   cutfactor = v[5];
   order = static_cast<int>(v[6]);
   thickness = v[7];
+  hg_form = static_cast<int>(v[8]);
   kernel = CubicSpline(h, dim);
 }
 
 double PairTLSPH::memory_usage()
 {
   double bytes =
-      (double) nmax * ((correction_size() + 25 + packed_size()) * sizeof(double) + sizeof(int));
+      (double) nmax * ((correction_size() + 26 + packed_size()) * sizeof(double) + sizeof(int));
   bytes += (double) nmax * (3 * sizeof(double) + sizeof(int));    // x0c, nlead
   // lean bond arrays: partner, g (dim), two weights, slot
   bytes += (double) ncache_max * (2 * sizeof(int) + (dim + 2) * sizeof(double));

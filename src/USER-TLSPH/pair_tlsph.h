@@ -69,6 +69,9 @@ class PairTLSPH : public Pair {
   void green_lagrange_strain(int i, double *E) const;
   const double *deformation_gradient(int i) const { return F[i]; }
   double strain_energy_density(int i) const { return psi[i]; }
+  // the hourglass energy of particle i (its share of E_hg) with the
+  // conservative form; 0 with the thesis's (its work is tallied by the bond fix)
+  double hourglass_energy(int i) const { return hg_form == 2 ? ehg[i] : 0.0; }
   int dimension() const { return dim; }
 
   class FixTLSPHBonds *bonds;
@@ -78,6 +81,7 @@ class PairTLSPH : public Pair {
   double h;               // smoothing length
   double alpha, beta;     // artificial viscosity coefficients
   double gamma;           // hourglass coefficient
+  int hg_form;            // hourglass force: 1 the thesis's pair force, 2 conservative
   int plane_stress;       // 2D: 1 plane stress, 0 plane strain
   double cutfactor;       // ghost cutoff = cutfactor * 2h
   int order;              // gradient correction: 1 linear (thesis), 2 quadratic
@@ -125,7 +129,8 @@ class PairTLSPH : public Pair {
   double **Q;         // gradient correction (TLSPH::correction), DIM x basis size
   double **sumg;      // sum_j g_ij over the cached bonds
   double **F;         // deformation gradient
-  double **P;         // first Piola-Kirchhoff stress
+  double **P;         // first Piola-Kirchhoff stress, plus H_i / (2 V_i) with the
+                      // conservative hourglass form (what the force pass uses)
   double **fown;      // V_i P_i sum_j g_ij
   double **pk;        // packed rows F, K = J F^-T, alpha_i [, R = V P Q] (TLSPH::Packed),
                       // communicated
@@ -138,6 +143,7 @@ class PairTLSPH : public Pair {
     return order == 1 ? TLSPH::Packed<3, 1>::size : TLSPH::Packed<3, 2>::size;
   }
   double *psi;        // strain energy density
+  double *ehg;        // hourglass energy of the particle (conservative form)
   int *nbond;         // # of cached (intact) bonds
   int *nlead;         // # of them that lead their pair (first in the segment):
                       // partner a ghost or a local particle after i
@@ -190,6 +196,7 @@ class PairTLSPH : public Pair {
   [[noreturn]] void unstable_particle(int i, double J) const;
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, int SCATTER> void compute_forces();
   template <int DIM, int ORDER> void dispatch_forces(int hg, int visc, int vir, int newton);
+  template <int DIM, int ORDER, int HG> void dispatch_forces_hg(int visc, int vir, int newton);
 
   void allocate();
   void set_defaults();

@@ -430,6 +430,75 @@ TLSPH_INLINE double hourglass_coefficient(const double *Fi, const double *Fj, co
   return -0.5 * gamma_Ebar * Vi_whg * ex * (r2 + eps2) * inv_both;
 }
 
+/* Conservative hourglass control (pair_style ... hourglass conservative,
+   doc/pair_tlsph.rst): the gradient of the energy
+     E_hg = 1/4 sum_i sum_j c_ij |e_ij|^2,   e_ij = F_i X_ij - x_ij,
+     c_ij = gamma Ebar V_i V_j W_ij / |X_ij|^2   (symmetric in i and j),
+   which vanishes for every homogeneous deformation. With F_i linear in the
+   positions (F_i = I + sum_m (u_m - u_i) (x) g_im) the force is
+     f_k = -dE_hg/dx_k = (1/2) H_k s_k - sum_i (1/2) H_i g_ik
+                         - (1/2) sum_j c_kj ((F_k + F_j) X_kj - 2 x_kj),
+     H_i = sum_j c_ij e_ij (x) X_ij,
+   i.e. (1/2) H_i adds to V_i P_i in the stress term, and each bond carries a
+   pair force: the thesis's pair force without its projection on x_ij.
+   hourglass_moment() returns sum_j c_ij |e_ij|^2 (= 4 x the particle's share
+   of E_hg) and writes H_i (DIM x DIM, row-major); coeff(m) is c_ij of bond m.
+   e_ij = (F_i - I) X_ij - (u_j - u_i): no cancellation of x_ij against F X_ij
+   for small strains. */
+template <int DIM, class Rows, class Bonds, class Coeff>
+TLSPH_INLINE double hourglass_moment(const Rows &x, int i, const Bonds &b, int nb,
+                                     const double *F, const Coeff &coeff, double *H)
+{
+  const double *xi = x(i);
+  double G[DIM * DIM];
+  for (int r = 0; r < DIM; r++)
+    for (int c = 0; c < DIM; c++) G[DIM * r + c] = F[3 * r + c] - (r == c ? 1.0 : 0.0);
+  for (int k = 0; k < DIM * DIM; k++) H[k] = 0.0;
+  double ee = 0.0;
+  for (int m = 0; m < nb; m++) {
+    const double *xj = x(b.partner(m));
+    double X[DIM];
+    b.template ref<DIM>(m, X);
+    const double c = coeff(m);
+    for (int r = 0; r < DIM; r++) {
+      double e = -((xj[r] - xi[r]) - X[r]);
+      for (int k = 0; k < DIM; k++) e += G[DIM * r + k] * X[k];
+      ee += c * e * e;
+      for (int k = 0; k < DIM; k++) H[DIM * r + k] += c * e * X[k];
+    }
+  }
+  return ee;
+}
+
+/* the pair force of the conservative form on i from bond ij:
+   f = coeff ((F_i + F_j) X_ij - 2 x_ij), coeff = -c_ij / 2 (Fi, Fj: DIM x DIM) */
+template <int DIM>
+TLSPH_INLINE void hourglass_pair_conservative(const double *Fi, const double *Fj, const double *X,
+                                              const double *xij, double coeff, double *f)
+{
+  for (int r = 0; r < DIM; r++) {
+    double e = -2.0 * xij[r];
+    for (int c = 0; c < DIM; c++) e += (Fi[DIM * r + c] + Fj[DIM * r + c]) * X[c];
+    f[r] = coeff * e;
+  }
+}
+
+/* the hourglass pair force on i from bond ij, HG 1: the thesis's (projected
+   on x_ij), HG 2: the conservative form's; gamma_Ebar Vi_whg = c_ij */
+template <int DIM, int HG>
+TLSPH_INLINE void hourglass_pair(const double *Fi, const double *Fj, const double *X,
+                                 const double *xij, double r2, double eps2, double inv_both,
+                                 double gamma_Ebar, double Vi_whg, double *f)
+{
+  if (HG == 2) {
+    hourglass_pair_conservative<DIM>(Fi, Fj, X, xij, -0.5 * gamma_Ebar * Vi_whg, f);
+  } else {
+    const double sh =
+        hourglass_coefficient<DIM>(Fi, Fj, X, xij, r2, eps2, inv_both, gamma_Ebar, Vi_whg);
+    for (int d = 0; d < DIM; d++) f[d] = sh * xij[d];
+  }
+}
+
 /* Pairs: with Newton's third law (SCATTER) the viscous and hourglass pair
    forces of a bond need computing once, not from both ends. The caller
    orders the bonds of i so that the first `nlead` lead: partner j is a
@@ -449,7 +518,9 @@ struct NoPairs {
    and fh (hourglass); fown = V_i P_i s_i must be added to fs separately.
      stress:   - sum_j V_j P_j g_ji  =  - sum_j R_j c_ij p(-X_ij/h)
      viscous:  - V_i sum_j q_ij (K_i + K_j) V_j grad_i W_ij / 2
-     hourglass: Ganzenmueller's pair force along x_ij (tlsph_pair_terms.h)
+     hourglass: HG 1 Ganzenmueller's pair force along x_ij (tlsph_pair_terms.h),
+                HG 2 the pair part of the conservative form (its H_i part is
+                in P_i and the packed rows, see hourglass_moment())
    (pair coefficients above). b: the bonds (BondRecords or LeanBonds).
    Accessors x, v return position/velocity rows, pk the packed rows, type(j)
    the particle type; mat[type] the material numbers. When VISIT is set,
@@ -557,11 +628,12 @@ TLSPH_FORCE_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, i
       }
     }
     if (HG) {
-      const double sh = hourglass_coefficient<DIM>(Fi, pj + L::F, X, xij, r2, eps2, inv_both,
-                                                   gamma * 0.5 * (mi.E + mj.E), Vi * b.whg(m));
+      double ph[DIM];
+      hourglass_pair<DIM, HG>(Fi, pj + L::F, X, xij, r2, eps2, inv_both,
+                              gamma * 0.5 * (mi.E + mj.E), Vi * b.whg(m), ph);
       for (int d = 0; d < DIM; d++) {
-        ah[d] += sh * xij[d];
-        if (VISIT) fb[d] += sh * xij[d];
+        ah[d] += ph[d];
+        if (VISIT) fb[d] += ph[d];
       }
     }
     if (VISIT) visit(j, xij, fb);
@@ -590,12 +662,9 @@ TLSPH_FORCE_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, i
         }
       }
       if (HG) {
-        const double sh = hourglass_coefficient<DIM>(Fi, pj + L::F, X, xij, r2, eps2, inv_both,
-                                                     gamma * 0.5 * (mi.E + mj.E), Vi * b.whg(m));
-        for (int d = 0; d < DIM; d++) {
-          ph[d] = sh * xij[d];
-          ah[d] += ph[d];
-        }
+        hourglass_pair<DIM, HG>(Fi, pj + L::F, X, xij, r2, eps2, inv_both,
+                                gamma * 0.5 * (mi.E + mj.E), Vi * b.whg(m), ph);
+        for (int d = 0; d < DIM; d++) ah[d] += ph[d];
       }
       const bool local = j < pairs.nlocal;
       if (local) pairs(j, pv, ph);

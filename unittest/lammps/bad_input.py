@@ -85,6 +85,8 @@ CASES = [
     ("ps_beta_negative", ps(f"{H} beta -1"), {}, r"pair_style tlsph: beta must be >= 0"),
     ("ps_gamma_word", ps(f"{H} gamma x"), {}, r"pair_style tlsph: gamma needs a number"),
     ("ps_gamma_negative", ps(f"{H} gamma -1"), {}, r"pair_style tlsph: gamma must be >= 0"),
+    ("ps_hourglass_word", ps(f"{H} hourglass projected"), {},
+     r"pair_style tlsph: hourglass must be 'thesis' or 'conservative', got 'projected'"),
     ("ps_plane_bad", ps(f"{H} plane foo"), {}, r"pair_style tlsph: plane must be 'strain' or 'stress', got 'foo'"),
     ("ps_plane_in_3d", ps(f"{H} plane strain", dim=3), {},
      r"pair_style tlsph: keyword 'plane' is only allowed with dimension 2"),
