@@ -166,9 +166,9 @@ def common_checks(rc, out):
     return bad
 
 
-def run_checked(a, name, text, extra=()):
+def run_checked(a, name, text, extra=(), timeout=600):
     """run a case deck; (workdir, output, problems, thermo names, thermo rows)"""
-    d, rc, out = run(a.lmp, a.workdir, name, text, extra)
+    d, rc, out = run(a.lmp, a.workdir, name, text, extra, timeout=timeout)
     bad = common_checks(rc, out)
     names, T = (None, None) if bad else thermo(out)
     return d, out, bad, names, T
@@ -486,7 +486,8 @@ run        {steps}
             ("" if hg == "thesis" else f"_{hg}") + ("" if periods == 20 else f"_{periods}T"))
     d, out, bad, names, T = run_checked(
         a, name, text, extra=["-var", "dx", str(dx), "-var", "alpha", "0", "-var", "gamma",
-                              str(gamma), "-var", "hg", hg, "-var", "common", os.path.join(a.examples, "common")])
+                              str(gamma), "-var", "hg", hg, "-var", "common", os.path.join(a.examples, "common")],
+        timeout=3600)
     if bad:
         return bad, {}
     tt, uy, et = T[:, names.index("Time")], T[:, names.index("c_tipy")], T[:, names.index("v_etot")]
