@@ -9,6 +9,7 @@ MAIN_EXAMPLE ?= crack-branching
 JOBS         ?= 2
 PYTHON       ?= /usr/bin/python3
 CMAKE_ARGS   ?=
+FUZZ_TIME    ?= 300
 
 SHELL := /bin/bash
 BUILD_ABS = $(abspath $(BUILD))
@@ -19,7 +20,7 @@ export TLSPH_PYTHON = $(PYTHON)
 export LMP_TLSPH = $(BUILD_ABS)/lmp_tlsph
 export TLSPH_PLUGIN = $(BUILD_ABS)/tlsphplugin.so
 
-.PHONY: all setup configure build run test test-sanitize bench bench-instructions bench-compare \
+.PHONY: all setup configure build run test test-sanitize fuzz bench bench-instructions bench-compare \
         bench-pareto bench-roofline clean
 
 all: build
@@ -56,6 +57,12 @@ test: build
 # (about 20 min the first time; not part of `make test`, see README)
 test-sanitize: setup
 	JOBS=$(JOBS) bash scripts/test-sanitize.sh
+
+# a bounded-time libFuzzer run of the pair_style / pair_coeff / material-file
+# parsers, FUZZ_TIME seconds (clang, in build-fuzz/; doc/fuzz.md; not part of
+# `make test`: the instrumented build takes about 3 min)
+fuzz: setup
+	JOBS=$(JOBS) bash scripts/fuzz-parser.sh $(FUZZ_TIME)
 
 bench: build
 	@if [ -f bench/run.sh ]; then bash bench/run.sh; \

@@ -183,6 +183,15 @@ void PairTLSPH::settings(int narg, char **arg)
   }
   if (!have_h) error->all(FLERR, "pair_style tlsph: keyword 'h' (smoothing length) is required");
   kernel = CubicSpline(h, dim);
+  // the kernel's normalisation ~ 1/h^dim and LAMMPS's squared cutoff
+  // (2 h cutfactor)^2 must be finite and > 0 (an underflow to 0 would mean
+  // no cutoff, an overflow no kernel)
+  const double cut = 2.0 * h * cutfactor;
+  if (!(std::isfinite(kernel.norm) && kernel.norm > 0.0 && std::isfinite(cut * cut) &&
+        cut * cut > 0.0))
+    error->all(FLERR, "pair_style tlsph: h = {} with cutfactor {} is out of the range a {}D kernel "
+                      "can be computed in (1/h^{} and (2 h cutfactor)^2 must be finite and > 0)",
+               h, cutfactor, dim, dim);
 }
 
 /* ----------------------------------------------------------------------
@@ -217,6 +226,25 @@ bool has_orthotropic_key(const std::vector<std::string> &words)
   return false;
 }
 }    // namespace
+
+// the constants derived from a material's values (isotropic: lambda, mu;
+// a ply: its rotated stiffness; both: the wave speed c0 and the hourglass
+// modulus E_hg) must be finite, and c0, E_hg, mu > 0: values of extreme
+// magnitudes can overflow them
+static void check_derived(Error *error, const PairTLSPH::Material &m, const std::string &where)
+{
+  auto good = [](double v) { return std::isfinite(v) && v > 0.0; };
+  bool ok = good(m.c0) && good(m.E_hg);
+  if (m.orthotropic)
+    for (double c : m.ortho_law.C) ok = ok && std::isfinite(c);
+  else
+    ok = ok && std::isfinite(m.lambda) && good(m.mu);
+  if (!ok)
+    error->all(FLERR, "{}: the material values are out of the range this style can compute "
+                      "with: they give a wave speed c0 = {:.6g}, hourglass modulus E_hg = {:.6g}{} "
+                      "(these must be finite and > 0)", where, m.c0, m.E_hg,
+               m.orthotropic ? "" : fmt::format(", lambda = {:.6g}, mu = {:.6g}", m.lambda, m.mu));
+}
 
 // Gc, sc: accepted (one material file serves both styles) but unused by
 // tlsph; given inline they are most likely meant for tlsph/damage: say so
@@ -285,6 +313,7 @@ void PairTLSPH::set_material(int type, const std::vector<std::string> &words,
   m.mu = lame_mu(E, nu);
   m.c0 = wave_speed(m.lambda, m.mu, rho);
   m.E_hg = E;
+  check_derived(error, m, where);
   pairmat[type] = PairMaterial{m.c0, m.rho, m.E_hg};
   sync_laws();
   check_material(type, where);
@@ -350,7 +379,12 @@ void PairTLSPH::set_orthotropic(int type, const std::vector<std::string> &words,
   double Clocal[36];
   orthotropic_stiffness_local(c, Clocal);
   m.c0 = sqrt(max_acoustic_modulus(Clocal) / rho);
-  m.E_hg = voigt_young_modulus(m.ortho_law.C);
+  // the Voigt average is invariant under the rotation: taken in the material
+  // axes, where the shear moduli do not enter the bulk part (in the rotated C
+  // they do, with opposite signs, and a G12 many orders above E1 cancels
+  // there to a zero or negative E_hg)
+  m.E_hg = voigt_young_modulus(Clocal);
+  check_derived(error, m, where);
   pairmat[type] = PairMaterial{m.c0, m.rho, m.E_hg};
   sync_laws();
   if (comm->me == 0)

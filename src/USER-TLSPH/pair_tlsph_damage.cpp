@@ -208,6 +208,11 @@ void PairTLSPHDamage::init_style()
       // isotropic only: check_material refuses Gc for an orthotropic type
       const double K = mat[t].lambda + 2.0 * mat[t].mu / 3.0;
       sc[t] = critical_stretch(Gc[t], mat[t].mu, K, h, dim);
+      if (!(std::isfinite(sc[t]) && sc[t] > 0.0))
+        error->all(FLERR, "pair tlsph/damage: type {}: the critical stretch from Gc = {} (E = {}, "
+                          "nu = {}, horizon h = {}) is {}: it must be finite and > 0 (give sc "
+                          "instead, or values of usual magnitudes)", t, Gc[t], mat[t].E, mat[t].nu,
+                   h, sc[t]);
     }
     if (comm->me == 0)
       utils::logmesg(lmp, "pair tlsph/damage: type {} critical stretch s_c = {:.6g}{}\n", t, sc[t],

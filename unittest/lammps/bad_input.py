@@ -100,6 +100,11 @@ CASES = [
     ("ps_cutfactor_small", ps(f"{H} cutfactor 0.5"), {}, r"pair_style tlsph: cutfactor must be >= 1"),
     ("ps_cutfactor_word", ps(f"{H} cutfactor big"), {}, r"pair_style tlsph: cutfactor needs a number"),
     ("ps_unknown", ps(f"{H} foo 1"), {}, r"pair_style tlsph: unknown keyword 'foo' \(allowed: h, alpha"),
+    # values the kernel or LAMMPS's squared cutoff cannot be computed with
+    # (found by the parser fuzzer, doc/fuzz.md)
+    ("ps_h_kernel_underflow", ps("h 1e-200"), {}, r"pair_style tlsph: h = 1e-200 with cutfactor 1.1 is out of the range a 2D kernel can be computed in"),
+    ("ps_h_kernel_overflow_3d", ps("h 1e120", dim=3), {}, r"pair_style tlsph: h = 1e\+120 with cutfactor 1.1 is out of the range a 3D kernel"),
+    ("ps_cutoff_overflow", ps(f"{H} cutfactor 1e308"), {}, r"pair_style tlsph: h = 0.00133 with cutfactor 1e\+308 is out of the range"),
     # ------------------------------------------------ wrong atom style / set-up
     ("atom_style_atomic", HEAD[2].format(atom_style="atomic").split("set type")[0] + "mass * 7.8e-3\n"
      + PAIR + COEFF + TAIL, {}, r"pair tlsph requires atom_style peri"),
@@ -119,6 +124,11 @@ CASES = [
      r"unknown material keyword 'G'"),
     ("pc_no_values", pc("* *"), {}, r"pair_coeff tlsph: expected 'I J E value nu value rho value'"),
     ("pc_bad_type_range", pc("3 3 E 210e9 nu 0.3 rho 7800"), {}, r"Numeric index 3 is out of bounds \(1-2\)"),
+    # derived constants out of the range of a double (found by the parser fuzzer)
+    ("pc_lambda_overflow", pc("* * E 1e308 nu 0.49 rho 7800"), {},
+     r"pair_coeff 1 1: the material values are out of the range this style can compute with: they give a wave speed c0 = inf.*lambda = inf"),
+    ("pc_wave_speed_overflow", pc("* * E 1e300 nu 0.3 rho 1e-300"), {},
+     r"pair_coeff 1 1: the material values are out of the range .*c0 = inf"),
     # accepted (material files serve both styles), but said to be unused
     ("pc_sc_on_tlsph", pc("* * E 210e9 nu 0.3 rho 7800 sc 0.01"), {},
      r"WARNING: pair_coeff 1 1: 'sc' is a fracture value of pair_style tlsph/damage; pair_style tlsph ignores it"),
@@ -129,6 +139,8 @@ CASES = [
     ("ortho_theta_word", pc("* * " + ORTHO + " theta ninety", dim=3), {}, r"theta needs a number, got 'ninety'"),
     ("ortho_mixed_iso", pc("* * " + ORTHO + " E 210e9", dim=3), {}, r"isotropic and orthotropic material keywords cannot be mixed"),
     ("ortho_nu12_big", pc("* * " + ORTHO.replace("nu12 0.3", "nu12 5"), dim=3), {}, r"nu12 = 5 is out of range: \|nu12\| must be < sqrt\(E1/E2\)"),
+    ("ortho_wave_speed_overflow", pc("* * " + ORTHO.replace("rho 1500", "rho 1e-300"), dim=3), {},
+     r"pair_coeff 1 1: the material values are out of the range .*c0 = inf"),
     # ------------------------------------------------ potential (material) files
     ("file_not_found", pc("* * nosuch.tlsph steel steel"), {}, r"cannot open tlsph material potential file nosuch\.tlsph"),
     ("file_name_not_found", pc("* * mat.tlsph steel iron"), {"mat.tlsph": GOOD_FILE}, r"material 'iron' \(atom type 2\) not found in file 'mat\.tlsph'"),
@@ -159,6 +171,10 @@ CASES = [
     ("pd_sc_word", pds(H, coeff="pair_coeff * * E 210e9 nu 0.3 rho 7800 sc small\n"), {}, r"sc needs a number, got 'small'"),
     ("pd_Gc_zero", pds(H, coeff="pair_coeff * * E 210e9 nu 0.3 rho 7800 Gc 0\n"), {}, r"Gc must be > 0"),
     ("pd_no_fracture_value", pds(H, coeff=COEFF), {}, r"pair tlsph/damage needs a fracture value for every material: Gc .* or sc"),
+    ("pd_sc_from_Gc_overflow", pds(H, coeff="pair_coeff * * E 1e-100 nu 0.3 rho 7800 Gc 1e300\n"), {},
+     r"pair tlsph/damage: type 1: the critical stretch from Gc = 1e\+300 .* is inf: it must be finite and > 0"),
+    ("pd_sc_from_Gc_underflow", pds(H, coeff="pair_coeff * * E 1e100 nu 0.3 rho 7800 Gc 1e-300\n"), {},
+     r"pair tlsph/damage: type 1: the critical stretch from Gc = 1e-300 .* is 0: it must be finite and > 0"),
     # ------------------------------------------------ fix tlsph/dt
     ("dt_missing_C", fx("fix dt all tlsph/dt"), {}, r"fix tlsph/dt: expected 'fix ID group tlsph/dt C"),
     ("dt_C_word", fx("fix dt all tlsph/dt fast"), {}, r"fix tlsph/dt: C needs a number, got 'fast'"),

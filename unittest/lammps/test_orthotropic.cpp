@@ -442,6 +442,25 @@ TEST(OrthotropicMaterial, wave_speed_and_hourglass_modulus)
   delete lmp;
 }
 
+/* the hourglass modulus (Voigt average) does not depend on theta, also for
+   constants of very different magnitudes: with G12 ~1e86 E1 it cancelled in
+   the rotated stiffness to E_hg = 0 at 45 degrees (found by the parser
+   fuzzer, doc/fuzz.md; now taken in the material axes) */
+TEST(OrthotropicMaterial, hourglass_modulus_independent_of_theta)
+{
+  LAMMPS *lmp = open_lammps();
+  Ply stiff = CARBON_EPOXY;
+  stiff.k[3] = 4e97;    // G12
+  run_script(lmp, block_script(3, "") + masses(3, stiff, stiff) + coeff(1, at(stiff, 0)) +
+                      coeff(2, at(stiff, 45)));
+  PairTLSPH *pair = tlsph_pair(lmp);
+  ASSERT_NE(pair, nullptr);
+  const double E0 = pair->material(1).E_hg;
+  EXPECT_TRUE(std::isfinite(E0) && E0 > 0.0) << E0;
+  EXPECT_NEAR(pair->material(2).E_hg, E0, 1e-12 * E0);
+  delete lmp;
+}
+
 /* ---------------------------------------------------------------------- */
 // restart: run 40 == run 20 + write_restart + read_restart (new instance) +
 // run 20, bitwise (no viscosity), and the materials come back identical
