@@ -21,7 +21,7 @@ export LMP_TLSPH = $(BUILD_ABS)/lmp_tlsph
 export TLSPH_PLUGIN = $(BUILD_ABS)/tlsphplugin.so
 
 .PHONY: all setup configure build run test test-sanitize fuzz bench bench-instructions bench-compare \
-        bench-pareto bench-roofline clean
+        bench-pareto bench-roofline kokkos clean
 
 all: build
 
@@ -63,6 +63,13 @@ test-sanitize: setup
 # `make test`: the instrumented build takes about 3 min)
 fuzz: setup
 	JOBS=$(JOBS) bash scripts/fuzz-parser.sh $(FUZZ_TIME)
+
+# a LAMMPS with KOKKOS (host, Kokkos Serial: Debian's libtrilinos-kokkos-dev),
+# PERI and PLUGIN from the same Debian source, cached in $(TLSPH_CACHE) and
+# keyed by version; prints its lmp (doc/kokkos.md; about 25 min the first time
+# on 2 shared cores). Our styles: `plugin load build/tlsphplugin.so`, without -k
+kokkos:
+	@TLSPH_JOBS=$(JOBS) bash scripts/build-lammps-plugin.sh kokkos
 
 bench: build
 	@if [ -f bench/run.sh ]; then bash bench/run.sh; \

@@ -24,6 +24,21 @@
 # the assignment, on a hard-linked copy of the source tree (the shared tree
 # stays untouched); nothing else of MACHDYN is changed.
 #
+# `build-lammps-plugin.sh kokkos` builds a LAMMPS with the KOKKOS package for
+# the host (Kokkos Serial backend), plus PLUGIN and PERI, in
+# lammps-kokkos-<source version>/ (library liblammps_kokkos.so.0); doc/kokkos.md.
+# The Debian LAMMPS source has no lib/kokkos (stripped from the +ds tarball),
+# so it is built against Debian's Kokkos, libtrilinos-kokkos-dev (Kokkos
+# 3.4.01, the version this LAMMPS wants; Serial backend only; installed here
+# when missing), with EXTERNAL_KOKKOS. Debian's KokkosConfig.cmake gives its
+# Kokkos::kokkos target the include directory /usr/lib/include, which does
+# not exist (its prefix is computed three levels up from the multiarch
+# lib/x86_64-linux-gnu/cmake/Kokkos, one level short), and CMake refuses an
+# imported target with a missing include directory. KOKKOS_PATCH below makes
+# LAMMPS's cmake/Modules/Packages/KOKKOS.cmake drop the missing directories of
+# that target and add Kokkos_INCLUDE_DIRS (/usr/include/trilinos, from the same
+# config file), on a hard-linked copy of the tree, as for bench.
+#
 # Why BUILD_SHARED_LIBS=on: in this LAMMPS version (20220106) the CMake build
 # defines LMP_PLUGIN (without which `plugin load` is a no-op that only prints
 # a warning) only for a shared-library build; the plugin's undefined LAMMPS
@@ -42,8 +57,22 @@ VARIANT=${1:-plugin}
 case "$VARIANT" in
   plugin) EXTRA_PKGS=() ;;
   bench)  EXTRA_PKGS=(-D PKG_MACHDYN=on -D DOWNLOAD_EIGEN3=off) ;;
-  *) die "unknown variant '$VARIANT' (allowed: plugin, bench)" ;;
+  kokkos) EXTRA_PKGS=(-D PKG_KOKKOS=on -D EXTERNAL_KOKKOS=on -D Kokkos_ENABLE_SERIAL=on
+                      -D Kokkos_ENABLE_OPENMP=off -D Kokkos_ENABLE_CUDA=off) ;;
+  *) die "unknown variant '$VARIANT' (allowed: plugin, bench, kokkos)" ;;
 esac
+
+# kokkos: Debian's Kokkos, built and at run time (libtrilinos_kokkoscore.so.13.2)
+if [ "$VARIANT" = kokkos ]; then
+  kk_pkg=libtrilinos-kokkos-dev
+  if [ "$(dpkg-query -W -f='${db:Status-Status}' "$kk_pkg" 2>/dev/null || true)" != installed ]; then
+    SUDO=()
+    if [ "$(id -u)" -ne 0 ] && command -v sudo >/dev/null 2>&1; then SUDO=(sudo -E); fi
+    log "installing the missing Debian package $kk_pkg (Kokkos 3.4.01, Serial backend)"
+    "${SUDO[@]}" apt-get update -q >&2
+    "${SUDO[@]}" apt-get install -y -q --no-install-recommends "$kk_pkg" >&2
+  fi
+fi
 
 # source tree: from the caller (must match the installed version, checked
 # below) or from setup.sh (which fetches it when missing)
@@ -83,11 +112,13 @@ if [ ! -x "$LMP" ]; then
 
   BUILD="$PREFIX/build"
   SRC_TREE=$LAMMPS_SOURCE_DIR
-  if [ "$VARIANT" = bench ]; then
+  if [ "$VARIANT" = bench ] || [ "$VARIANT" = kokkos ]; then
     # hard-linked copy of the tree; the one patched file becomes a real copy
     SRC_TREE="$PREFIX/source"
     rm -rf "$SRC_TREE"
     cp -al "$LAMMPS_SOURCE_DIR" "$SRC_TREE"
+  fi
+  if [ "$VARIANT" = bench ]; then
     f="$SRC_TREE/src/MACHDYN/pair_smd_tlsph.cpp"
     cp --remove-destination "$LAMMPS_SOURCE_DIR/src/MACHDYN/pair_smd_tlsph.cpp" "$f"
     /usr/bin/python3 - "$f" <<'BENCH_PATCH' || die "cannot patch $f (another MACHDYN version?)"
@@ -105,23 +136,55 @@ open(p, "w").write(s)
 BENCH_PATCH
     log "patched $f: minimum_image(dx0) after dx0 = x0j - x0i (the only change)"
   fi
+  if [ "$VARIANT" = kokkos ]; then
+    f="$SRC_TREE/cmake/Modules/Packages/KOKKOS.cmake"
+    cp --remove-destination "$LAMMPS_SOURCE_DIR/cmake/Modules/Packages/KOKKOS.cmake" "$f"
+    /usr/bin/python3 - "$f" <<'KOKKOS_PATCH' || die "cannot patch $f (another LAMMPS version?)"
+import sys
+p = sys.argv[1]
+s = open(p).read()
+# Debian's KokkosConfig.cmake (libtrilinos-kokkos-dev) sets the include
+# directory of Kokkos::kokkos to a path that does not exist (/usr/lib/include):
+# keep the existing ones, add Kokkos_INCLUDE_DIRS (/usr/include/trilinos)
+old = "  find_package(Kokkos 3.4.01 REQUIRED CONFIG)\n"
+new = old + '''  # tlsph (scripts/build-lammps-plugin.sh kokkos): Debian's Kokkos::kokkos
+  # names a missing include directory; use the existing ones + Kokkos_INCLUDE_DIRS
+  get_target_property(_tlsph_kk_inc Kokkos::kokkos INTERFACE_INCLUDE_DIRECTORIES)
+  set(_tlsph_kk_dirs)
+  foreach(_d IN LISTS _tlsph_kk_inc Kokkos_INCLUDE_DIRS)
+    if(EXISTS "${_d}")
+      list(APPEND _tlsph_kk_dirs "${_d}")
+    endif()
+  endforeach()
+  list(REMOVE_DUPLICATES _tlsph_kk_dirs)
+  message(STATUS "KOKKOS: include directories of Kokkos::kokkos: ${_tlsph_kk_dirs} (was: ${_tlsph_kk_inc})")
+  set_target_properties(Kokkos::kokkos PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_tlsph_kk_dirs}")
+'''
+if s.count(old) != 1:
+    sys.exit("expected exactly one 'find_package(Kokkos 3.4.01 REQUIRED CONFIG)', found %d" % s.count(old))
+open(p, "w").write(s.replace(old, new))
+KOKKOS_PATCH
+    log "patched $f: existing include directories of Kokkos::kokkos plus Kokkos_INCLUDE_DIRS (the only change)"
+  fi
   log "building LAMMPS $SRC_VER ($VARIANT: PLUGIN+PERI ${EXTRA_PKGS[*]}) in $BUILD (ninja -j$JOBS; takes a while the first time)"
   start=$(date +%s)
   # Everything optional off: no package but PLUGIN and PERI, no OpenMP, no
   # image/movie/compression helpers, no downloads, no tests, no docs.
+  # EXTRA_PKGS come last: a variant's settings override these defaults.
   cmake -S "$SRC_TREE/cmake" -B "$BUILD" -G Ninja \
     -D CMAKE_BUILD_TYPE=Release \
     -D CMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
     -D BUILD_MPI=on -D BUILD_OMP=off -D BUILD_SHARED_LIBS=on \
     -D LAMMPS_MACHINE=$VARIANT -D LAMMPS_SIZES=smallbig -D LAMMPS_EXCEPTIONS=off \
-    -D PKG_PLUGIN=on -D PKG_PERI=on "${EXTRA_PKGS[@]}" \
+    -D PKG_PLUGIN=on -D PKG_PERI=on \
     -D PKG_KSPACE=off -D PKG_MANYBODY=off -D PKG_MOLECULE=off -D PKG_RIGID=off \
     -D PKG_PYTHON=off -D PKG_OPENMP=off -D PKG_KOKKOS=off -D PKG_GPU=off \
     -D WITH_JPEG=off -D WITH_PNG=off -D WITH_GZIP=off -D WITH_FFMPEG=off \
     -D BUILD_TOOLS=off -D BUILD_LAMMPS_SHELL=off -D BUILD_DOC=off \
     -D ENABLE_TESTING=off -D WITH_SWIG=off \
     -D CMAKE_INSTALL_RPATH='$ORIGIN/../lib' -D CMAKE_BUILD_WITH_INSTALL_RPATH=on \
-    -D CMAKE_SKIP_INSTALL_RPATH=off -D Python_EXECUTABLE=/usr/bin/python3 >&2
+    -D CMAKE_SKIP_INSTALL_RPATH=off -D Python_EXECUTABLE=/usr/bin/python3 \
+    "${EXTRA_PKGS[@]}" >&2
   ninja -C "$BUILD" -j"$JOBS" lmp_$VARIANT >&2
 
   # symbols a dlopen()ed plugin needs are exported by the shared library
