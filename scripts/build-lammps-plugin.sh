@@ -118,10 +118,15 @@ if [ ! -x "$LMP" ]; then
     rm -rf "$SRC_TREE"
     cp -al "$LAMMPS_SOURCE_DIR" "$SRC_TREE"
   fi
+  # patch_file REL WHY: the copy's file REL becomes a real file (the shared
+  # tree keeps its own), changed by the Python program on stdin (path: argv[1])
+  patch_file() {
+    f="$SRC_TREE/$1"
+    cp --remove-destination "$LAMMPS_SOURCE_DIR/$1" "$f"
+    /usr/bin/python3 - "$f" || die "cannot patch $f ($2)"
+  }
   if [ "$VARIANT" = bench ]; then
-    f="$SRC_TREE/src/MACHDYN/pair_smd_tlsph.cpp"
-    cp --remove-destination "$LAMMPS_SOURCE_DIR/src/MACHDYN/pair_smd_tlsph.cpp" "$f"
-    /usr/bin/python3 - "$f" <<'BENCH_PATCH' || die "cannot patch $f (another MACHDYN version?)"
+    patch_file src/MACHDYN/pair_smd_tlsph.cpp "another MACHDYN version?" <<'BENCH_PATCH'
 import re, sys
 p = sys.argv[1]
 s = open(p).read()
@@ -137,9 +142,7 @@ BENCH_PATCH
     log "patched $f: minimum_image(dx0) after dx0 = x0j - x0i (the only change)"
   fi
   if [ "$VARIANT" = kokkos ]; then
-    f="$SRC_TREE/cmake/Modules/Packages/KOKKOS.cmake"
-    cp --remove-destination "$LAMMPS_SOURCE_DIR/cmake/Modules/Packages/KOKKOS.cmake" "$f"
-    /usr/bin/python3 - "$f" <<'KOKKOS_PATCH' || die "cannot patch $f (another LAMMPS version?)"
+    patch_file cmake/Modules/Packages/KOKKOS.cmake "another LAMMPS version?" <<'KOKKOS_PATCH'
 import sys
 p = sys.argv[1]
 s = open(p).read()
