@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Fracture convergence study (issue 12): the Kalthoff-Winkler 2D deck at the
+# resolutions KDX and the crack-branching deck at BDX, for each named model
+# setting, then the report doc/fracture-convergence.md with its plots
+# (bench/fracture_report.py): crack angles, initiation, branching, peak tip
+# speed and edge times against dx, with the literature bands drawn.
+#
+#   bash bench/fracture.sh [SETTING ...]        default: thesis
+#   KDX="1.67 1.0" BDX="0.5" bash bench/fracture.sh thesis gamma1   (a subset)
+#   REPORT_ONLY=1 bash bench/fracture.sh ...    the report from finished runs
+#
+# Settings (the variables each passes to both decks; the decks' own defaults
+# are the thesis's coefficients per benchmark):
+#   thesis     nothing: h = 1.33 dx, the thesis's viscosity, hourglass and
+#              filter values of each benchmark
+#   h2         -var hdx 2.0 (the crack-branching example's branching setting)
+#   gamma1     -var gamma 1.0 (hourglass control on in both)
+#   conservative  -var gamma 1.0 -var hg conservative
+# Runs are resumable: a finished case (its log ends with the wall time) is
+# kept unless FORCE=1. Wall time: the 0.5 mm Kalthoff case is 80,000
+# particles (about 15 min on a free core), the 0.333 mm plate 36,000 (3-5 min).
+# Output: bench/out/fracture/<setting>/{kalthoff,branching}-<dx mm>.*
+set -uo pipefail
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ROOT="$(dirname "$HERE")"
+PY="${TLSPH_PYTHON:-/usr/bin/python3}"
+OUT="$HERE/out/fracture"
+KDX="${KDX:-1.67 1.33 1.11 1.0 0.833 0.667 0.5}"
+BDX="${BDX:-0.5 0.333}"
+settings=("$@")
+[ ${#settings[@]} -eq 0 ] && settings=(thesis)
+
+vars_of() {
+  case "$1" in
+    thesis) ;;
+    h2) echo "-var hdx 2.0" ;;
+    gamma1) echo "-var gamma 1.0" ;;
+    conservative) echo "-var gamma 1.0 -var hg conservative" ;;
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis h2 gamma1 conservative)" >&2
+       return 1 ;;
+  esac
+}
+
+# dx in mm as written (1.67 means 5/3 mm, 1.33 4/3, 1.11 10/9, 0.833 5/6,
+# 0.667 2/3, 0.333 1/3: the lattice must fit the plates exactly) -> metres
+dx_m() {
+  case "$1" in
+    1.67) echo 0.00166666666666667 ;; 1.33) echo 0.00133333333333333 ;;
+    1.11) echo 0.00111111111111111 ;; 0.833) echo 0.000833333333333333 ;;
+    0.667) echo 0.000666666666666667 ;; 0.333) echo 0.000333333333333333 ;;
+    *) "$PY" -c "print(float('$1') * 1e-3)" ;;
+  esac
+}
+
+run_deck() {    # example deck setting dxmm extra...
+  local ex=$1 deck=$2 setting=$3 mm=$4; shift 4
+  local dir="$OUT/$setting" name
+  name="$(basename "$ex" | sed 's/-2d$//; s/crack-branching/branching/')-$mm"
+  mkdir -p "$dir"
+  if [ -z "${REPORT_ONLY:-}" ]; then
+    (cd "$ROOT/examples/$ex" && FORCE="${FORCE:-0}" ../common/run_case.sh "$deck" "$dir" "$name" \
+       -var dx "$(dx_m "$mm")" -var timg 0 "$@") || echo "  $name: LAMMPS stopped with an error"
+  fi
+  if [ -f "$dir/$name.log" ] && { [ -n "${FORCE:-}" ] || [ ! -f "$dir/$name.crack.json" ]; }; then
+    (cd "$ROOT/examples/$ex" && "$PY" summarise.py "$dir/$name" --label "$setting $name" \
+       > "$dir/summary-$name.txt" 2>&1) || echo "  $name: summarise.py failed"
+  fi
+}
+
+for s in "${settings[@]}"; do
+  v=$(vars_of "$s") || exit 1
+  # shellcheck disable=SC2086
+  for mm in $KDX; do run_deck kalthoff-2d in.kalthoff-2d "$s" "$mm" -var tend 110e-6 $v; done
+  # shellcheck disable=SC2086
+  for mm in $BDX; do run_deck crack-branching in.crack-branching "$s" "$mm" -var tend 90e-6 $v; done
+done
+"$PY" "$HERE/fracture_report.py" --out "$OUT" --doc "$ROOT/doc/fracture-convergence.md" "${settings[@]}"
