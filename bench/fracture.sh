@@ -25,8 +25,9 @@ HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(dirname "$HERE")"
 PY="${TLSPH_PYTHON:-/usr/bin/python3}"
 OUT="$HERE/out/fracture"
-KDX="${KDX:-1.67 1.33 1.11 1.0 0.833 0.667 0.5}"
-BDX="${BDX:-0.5 0.333}"
+# (set but empty: none of that deck)
+KDX="${KDX-1.67 1.33 1.11 1.0 0.833 0.667 0.5}"
+BDX="${BDX-0.5 0.333}"
 settings=("$@")
 [ ${#settings[@]} -eq 0 ] && settings=(thesis)
 
