@@ -54,7 +54,7 @@ test: build
 
 # the unit tests, the shortened example decks and a plugin load/run/clear leak
 # check under AddressSanitizer + UndefinedBehaviorSanitizer, in build-sanitize/
-# (about 20 min the first time; not part of `make test`, see README)
+# (30-45 min the first time on 2 cores; not part of `make test`, see README)
 test-sanitize: setup
 	JOBS=$(JOBS) bash scripts/test-sanitize.sh
 

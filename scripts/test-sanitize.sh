@@ -31,9 +31,14 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 ninja -C "$B" -j"$JOBS"
 status=0
 
-# 1. tests (the example decks at their shortened, coarse settings)
+# 1. tests (the example decks at their shortened, coarse settings). Not the
+# 3D free vibration (stability.vibration_3d_*): 180,000 steps, about 7 min
+# of one core without sanitizers, over its 900 s limit with them (measured:
+# timed out, no report); its code path, the conservative hourglass form in 3D,
+# runs under the sanitizers in lammps.Hourglass.*
 ctest --test-dir "$B" --output-on-failure --parallel "$JOBS" \
-      -R '^(physics|lammps|damage|stability)\.|^examples\.(cantilever-2d|kalthoff-2d)' || status=1
+      -R '^(physics|lammps|damage|stability)\.|^examples\.(cantilever-2d|kalthoff-2d)' \
+      -E '^stability\.vibration_3d' || status=1
 
 # 2. leak check of plugin load / run / clear cycles
 lmp=$(bash "$ROOT/scripts/build-lammps-plugin.sh" | tail -n1)
