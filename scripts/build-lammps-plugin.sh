@@ -89,10 +89,55 @@ CACHE=$(cd "$CACHE" && pwd -P)
 PREFIX="$CACHE/lammps-$VARIANT-$SRC_VER"
 LMP="$PREFIX/bin/lmp"
 
-if [ ! -x "$LMP" ]; then
+# kokkos: our package is compiled into this LAMMPS (the CPU styles into src/,
+# the /kk styles of src/USER-TLSPH/kokkos into src/KOKKOS/), so the build is
+# checked on every call: ninja recompiles what changed (seconds when nothing did)
+REPO=$(cd "$HERE/.." && pwd -P)
+BUILD_ALWAYS=0
+[ "$VARIANT" = kokkos ] && BUILD_ALWAYS=1
+if [ ! -x "$LMP" ] || [ "$BUILD_ALWAYS" = 1 ]; then
   mkdir -p "$PREFIX"
   exec 9>"$PREFIX/.lock"          # one build at a time per cache
   flock 9
+fi
+# sync_tlsph OUT: copy our sources into the LAMMPS tree (a file only when its
+# content differs, so that ninja sees real changes only), write the list of
+# copies to OUT and remove the copies that the last list (tlsph-files.txt)
+# has and OUT has not (files removed from the repository)
+sync_tlsph() {
+  local out=$1 f b dst
+  : > "$out"
+  for f in "$REPO"/src/USER-TLSPH/*.h "$REPO"/src/USER-TLSPH/*.cpp \
+           "$REPO"/src/USER-TLSPH/kokkos/*.h "$REPO"/src/USER-TLSPH/kokkos/*.cpp; do
+    [ -f "$f" ] || continue
+    b=$(basename "$f")
+    [ "$b" = tlsph_plugin.cpp ] && continue     # the plugin entry point: not compiled in
+    case "$f" in */kokkos/*) dst="$SRC_TREE/src/KOKKOS/$b" ;; *) dst="$SRC_TREE/src/$b" ;; esac
+    cmp -s "$f" "$dst" || cp "$f" "$dst"
+    printf '%s\n' "$dst" >> "$out"
+  done
+  if [ -f "$PREFIX/tlsph-files.txt" ]; then
+    while read -r dst; do
+      grep -qxF "$dst" "$out" || rm -f "$dst"
+    done < "$PREFIX/tlsph-files.txt"
+  fi
+}
+if [ "$BUILD_ALWAYS" = 1 ] && [ -x "$LMP" ] && [ -f "$PREFIX/build/build.ninja" ]; then
+  SRC_TREE="$PREFIX/source"
+  BUILD="$PREFIX/build"
+  sync_tlsph "$PREFIX/tlsph-files.new"
+  if ! cmp -s "$PREFIX/tlsph-files.new" "$PREFIX/tlsph-files.txt"; then
+    log "the package's file list changed: re-running cmake in $BUILD"
+    cmake "$BUILD" >&2
+  fi
+  mv "$PREFIX/tlsph-files.new" "$PREFIX/tlsph-files.txt"
+  ninja -C "$BUILD" -j"$JOBS" lmp_$VARIANT >&2
+  if ! cmp -s "$BUILD/lmp_$VARIANT" "$LMP" || ! cmp -s "$BUILD/liblammps_$VARIANT.so.0" "$PREFIX/lib/liblammps_$VARIANT.so.0"; then
+    cp -a "$BUILD"/liblammps_$VARIANT.so* "$PREFIX/lib/"
+    cp "$BUILD/lmp_$VARIANT" "$PREFIX/bin/lmp.tmp" && mv "$PREFIX/bin/lmp.tmp" "$LMP"
+  fi
+  printf '%s\n' "$LMP"
+  exit 0
 fi
 if [ ! -x "$LMP" ]; then
   # the tree must be the installed version: same date check as CMakeLists.txt
@@ -168,6 +213,12 @@ if s.count(old) != 1:
 open(p, "w").write(s.replace(old, new))
 KOKKOS_PATCH
     log "patched $f: existing include directories of Kokkos::kokkos plus Kokkos_INCLUDE_DIRS (the only change)"
+  fi
+  if [ "$VARIANT" = kokkos ]; then
+    rm -f "$PREFIX/tlsph-files.txt"
+    sync_tlsph "$PREFIX/tlsph-files.new"
+    mv "$PREFIX/tlsph-files.new" "$PREFIX/tlsph-files.txt"
+    log "our package compiled in: $(wc -l < "$PREFIX/tlsph-files.txt") files of src/USER-TLSPH (and kokkos/) copied into $SRC_TREE/src"
   fi
   log "building LAMMPS $SRC_VER ($VARIANT: PLUGIN+PERI ${EXTRA_PKGS[*]}) in $BUILD (ninja -j$JOBS; takes a while the first time)"
   start=$(date +%s)

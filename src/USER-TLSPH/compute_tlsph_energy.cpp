@@ -32,6 +32,7 @@ void ComputeTLSPHEnergy::init()
 void ComputeTLSPHEnergy::compute_vector()
 {
   invoked_vector = update->ntimestep;
+  pair->sync_host();
   double mine[4] = {0, 0, 0, 0};
   const int nlocal = atom->nlocal;
   int *mask = atom->mask;

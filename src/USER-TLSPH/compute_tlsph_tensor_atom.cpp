@@ -42,6 +42,7 @@ void ComputeTLSPHTensorAtom::init()
 void ComputeTLSPHTensorAtom::compute_peratom()
 {
   invoked_peratom = update->ntimestep;
+  pair->sync_host();
   if (atom->nmax > nmax) {
     memory->destroy(values);
     nmax = atom->nmax;

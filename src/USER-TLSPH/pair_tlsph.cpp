@@ -828,19 +828,9 @@ void PairTLSPH::swap_bonds(int i, int m1, int m2)
 }
 
 namespace {
-// row accessor over a LAMMPS per-atom array
 // rows of a contiguous per-atom array (memory->create's double** arrays
 // are one block): row j is base + stride j, one load instead of two
-struct Rows {
-  const double *base;
-  int stride;
-  Rows(double **p, int n) : base(p ? p[0] : nullptr), stride(n) {}
-  const double *operator()(int j) const { return base + (bigint) stride * j; }
-};
-struct TypeOf {
-  const int *t;
-  int operator()(int j) const { return t[j]; }
-};
+TLSPH::StridedRows Rows(double **p, int n) { return TLSPH::StridedRows{p ? p[0] : nullptr, n}; }
 struct ScatterForce {
   double **f;
   void operator()(int j, const double *t) const
@@ -848,19 +838,6 @@ struct ScatterForce {
     f[j][0] -= t[0];
     f[j][1] -= t[1];
     f[j][2] -= t[2];
-  }
-};
-struct VirialTally {
-  double *virial;
-  void operator()(int, const double *xij, const double *f) const
-  {
-    // every bond is visited from both ends: half of r_ij (x) f_ij each time
-    virial[0] -= 0.5 * xij[0] * f[0];
-    virial[1] -= 0.5 * xij[1] * f[1];
-    virial[2] -= 0.5 * xij[2] * f[2];
-    virial[3] -= 0.5 * xij[0] * f[1];
-    virial[4] -= 0.5 * xij[0] * f[2];
-    virial[5] -= 0.5 * xij[1] * f[2];
   }
 };
 // Newton's third law for the viscous and hourglass pair forces (see
@@ -911,7 +888,7 @@ int PairTLSPH::correct_particle(int i, BondCache *b, int n, const double *vj)
 
 template <int DIM, int ORDER, int LAWS> void PairTLSPH::compute_deformation()
 {
-  const Rows x(atom->x, 3);
+  const auto x = Rows(atom->x, 3);
   const int nlocal = atom->nlocal;
   const bool need_K = viscosity_active();
   for (int i = 0; i < nlocal; i++) {
@@ -942,8 +919,8 @@ template <int DIM, int ORDER> void PairTLSPH::dispatch_deformation()
 template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, int SCATTER>
 void PairTLSPH::compute_forces()
 {
-  const Rows x(atom->x, 3), v(atom->v, 3), pkr(pk, packed_size());
-  const TypeOf type{atom->type};
+  const auto x = Rows(atom->x, 3), v = Rows(atom->v, 3), pkr = Rows(pk, packed_size());
+  const TLSPH::TypeArray type{atom->type};
   double **f = atom->f;
   double *vfrac = atom->vfrac;
   const int nlocal = atom->nlocal;
@@ -951,7 +928,7 @@ void PairTLSPH::compute_forces()
   // full-step velocity (FixTLSPHBonds::end_of_step)
   double **f_hg = bonds->f_hg;
   double **f_visc = bonds->f_visc;
-  const VirialTally tally{virial};
+  const TLSPH::VirialTally tally{virial};
   const ScatterForce scatter{f};
   const PairMaterial *pm = pairmat.data();
 
@@ -1022,24 +999,45 @@ void PairTLSPH::deformation_pass()
 
 /* ---------------------------------------------------------------------- */
 
+/* the bond cache after a neighbor build (bond fix: rebuild); returns true
+   when it was rebuilt. Once per run it reports the particles whose gradient
+   correction fell back to a lower order. */
+bool PairTLSPH::refresh_bond_cache()
+{
+  if (atom->nmax > nmax) grow_peratom();
+  if (!bonds->rebuild) return false;
+  build_bond_cache();
+  bonds->rebuild = 0;
+  if (report_fallback) {
+    // once per run: how many particles could not get the requested gradient order
+    report_fallback = 0;
+    int all = 0;
+    MPI_Allreduce(&ndegraded, &all, 1, MPI_INT, MPI_SUM, world);
+    if (all && comm->me == 0)
+      utils::logmesg(lmp, "pair tlsph: {} particle(s) have too few or degenerate partners for "
+                          "the {} gradient correction and use a lower order (see doc)\n",
+                     all, order == 2 ? "quadratic" : "linear");
+  }
+  return true;
+}
+
+// global and per-atom energy of the step: V_i psi_i (+ E_hg,i, conservative form)
+void PairTLSPH::tally_energy()
+{
+  if (!eflag_either) return;
+  const int nlocal = atom->nlocal;
+  double *vfrac = atom->vfrac;
+  for (int i = 0; i < nlocal; i++) {
+    const double e = vfrac[i] * psi[i] + (hg_form == 2 && gamma != 0.0 ? ehg[i] : 0.0);
+    if (eflag_global) eng_vdwl += e;
+    if (eflag_atom) eatom[i] += e;
+  }
+}
+
 void PairTLSPH::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  if (atom->nmax > nmax) grow_peratom();
-  if (bonds->rebuild) {
-    build_bond_cache();
-    bonds->rebuild = 0;
-    if (report_fallback) {
-      // once per run: how many particles could not get the requested gradient order
-      report_fallback = 0;
-      int all = 0;
-      MPI_Allreduce(&ndegraded, &all, 1, MPI_INT, MPI_SUM, world);
-      if (all && comm->me == 0)
-        utils::logmesg(lmp, "pair tlsph: {} particle(s) have too few or degenerate partners for "
-                            "the {} gradient correction and use a lower order (see doc)\n",
-                       all, order == 2 ? "quadratic" : "linear");
-    }
-  }
+  refresh_bond_cache();
 
   // (1) F and stress; tlsph/damage applies its pre-cracks first, breaks bonds
   // inside the pass and then updates the damage and alpha_i (hooks, no-ops here)
@@ -1060,16 +1058,7 @@ void PairTLSPH::compute(int eflag, int vflag)
     if (order == 1) dispatch_forces<3, 1>(hg, visc, vir, nt);
     else dispatch_forces<3, 2>(hg, visc, vir, nt);
   }
-
-  if (eflag_either) {
-    const int nlocal = atom->nlocal;
-    double *vfrac = atom->vfrac;
-    for (int i = 0; i < nlocal; i++) {
-      const double e = vfrac[i] * psi[i] + (hg_form == 2 && gamma != 0.0 ? ehg[i] : 0.0);
-      if (eflag_global) eng_vdwl += e;
-      if (eflag_atom) eatom[i] += e;
-    }
-  }
+  tally_energy();
 }
 
 /* ---------------------------------------------------------------------- */

@@ -73,8 +73,32 @@ class PairTLSPH : public Pair {
   // conservative form; 0 with the thesis's (its work is tallied by the bond fix)
   double hourglass_energy(int i) const { return hg_form == 2 ? ehg[i] : 0.0; }
   int dimension() const { return dim; }
+  // the /kk styles keep F, psi, ... on the device: the computes call this
+  // before reading them (a no-op for the CPU styles)
+  virtual void sync_host() {}
 
   class FixTLSPHBonds *bonds;
+
+  /* the per-particle part of pass (1) for material m (TLSPH::particle_stress_row
+     with the material's law; LAWS 0: isotropic only); the CPU loop and the
+     Kokkos kernels of tlsph/kk both call this */
+  template <int DIM, int ORDER, int LAWS, class Rows, class Bonds, class Coeff>
+  static TLSPH_FORCE_INLINE double stress_row(const Material &m, int plane_stress, double *F,
+                                              double *P, bool need_K, bool conservative,
+                                              const Rows &x, int i, const Bonds &b, int nb,
+                                              const Coeff &coeff, double Vi, const double *Q,
+                                              double alpha_i, const double *sumg, bool with_R,
+                                              double *row, double *fown, double *ehg, double *J)
+  {
+    if (LAWS && m.orthotropic)
+      return TLSPH::particle_stress_row<DIM, ORDER>(m.ortho_law, F, P, need_K, conservative, x,
+                                                    i, b, nb, coeff, Vi, Q, alpha_i, sumg,
+                                                    with_R, row, fown, ehg, J);
+    const TLSPH::IsotropicSVK law{m.lambda, m.mu, DIM == 2 ? plane_stress : 0};
+    return TLSPH::particle_stress_row<DIM, ORDER>(law, F, P, need_K, conservative, x, i, b, nb,
+                                                  coeff, Vi, Q, alpha_i, sumg, with_R, row, fown,
+                                                  ehg, J);
+  }
 
  protected:
   // settings
@@ -200,6 +224,8 @@ class PairTLSPH : public Pair {
 
   void allocate();
   void set_defaults();
+  bool refresh_bond_cache();
+  void tally_energy();
 };
 
 }    // namespace LAMMPS_NS

@@ -100,6 +100,32 @@ template <int DIM, class Rows> struct LeanBonds {
   }
 };
 
+/* Accessors of particle data for the kernels below, usable on a device:
+   rows j of a contiguous per-atom block (memory->create's double** arrays,
+   Kokkos LayoutRight views), the type of particle j, and the virial tally. */
+struct StridedRows {
+  const double *base;
+  int stride;
+  TLSPH_INLINE const double *operator()(int j) const { return base + (long) stride * j; }
+};
+struct TypeArray {
+  const int *t;
+  TLSPH_INLINE int operator()(int j) const { return t[j]; }
+};
+// every bond is visited from both ends: half of r_ij (x) f_ij each time
+struct VirialTally {
+  double *virial;
+  TLSPH_INLINE void operator()(int, const double *xij, const double *f) const
+  {
+    virial[0] -= 0.5 * xij[0] * f[0];
+    virial[1] -= 0.5 * xij[1] * f[1];
+    virial[2] -= 0.5 * xij[2] * f[2];
+    virial[3] -= 0.5 * xij[0] * f[1];
+    virial[4] -= 0.5 * xij[0] * f[2];
+    virial[5] -= 0.5 * xij[1] * f[2];
+  }
+};
+
 // the polynomial basis of the corrected gradient
 template <int DIM, int ORDER> struct Basis {
   static constexpr int size = (ORDER == 1) ? DIM : (DIM == 2 ? 5 : 9);
@@ -497,6 +523,55 @@ TLSPH_INLINE void hourglass_pair(const double *Fi, const double *Fj, const doubl
         hourglass_coefficient<DIM>(Fi, Fj, X, xij, r2, eps2, inv_both, gamma_Ebar, Vi_whg);
     for (int d = 0; d < DIM; d++) f[d] = sh * xij[d];
   }
+}
+
+/* c_ij of bond m of particle i for the conservative hourglass form:
+   gamma (E_i + E_j) / 2 V_i V_j W_ij / |X_ij|^2 (V_j W / |X|^2 is whg) */
+template <class Bonds, class Types> struct HourglassWeights {
+  const PairMaterial *pm;
+  Types type;
+  const Bonds &b;
+  double gamma, gEi, Vi;
+  TLSPH_INLINE HourglassWeights(const PairMaterial *pm_, Types type_, const Bonds &b_,
+                                double gamma_, int i, double Vi_) :
+      pm(pm_), type(type_), b(b_), gamma(gamma_), gEi(0.5 * gamma_ * pm_[type_(i)].E), Vi(Vi_)
+  {
+  }
+  TLSPH_INLINE double operator()(int m) const
+  {
+    return (gEi + 0.5 * gamma * pm[type(b.partner(m))].E) * Vi * b.whg(m);
+  }
+};
+
+/* The per-particle part of pass (1) once F_i is known (both pair styles, CPU
+   loop and Kokkos kernel): stress P_i from the law (IsotropicSVK or
+   OrthotropicSVK; F may get F33 in 2D plane stress), with the conservative
+   hourglass form (conservative = true) plus H_i / (2 V_i) and its energy
+   share *ehg = E_hg,i (else *ehg = 0), then the packed row and V_i P_i s_i.
+   coeff(m) = c_ij of bond m (hourglass_moment). Returns psi_i and *J = det F;
+   when J <= 0 or psi is not finite it returns at once (the caller stops the
+   run, naming the particle). */
+template <int DIM, int ORDER, class Law, class Rows, class Bonds, class Coeff>
+TLSPH_FORCE_INLINE double particle_stress_row(const Law &law, double *F, double *P, bool need_K,
+                                              bool conservative, const Rows &x, int i,
+                                              const Bonds &b, int nb, const Coeff &coeff,
+                                              double Vi, const double *Q, double alpha_i,
+                                              const double *sumg, bool with_R, double *row,
+                                              double *fown, double *ehg, double *J)
+{
+  double K[9];
+  const double psi = stress_tensors(law, DIM, F, P, need_K ? K : nullptr, J);
+  *ehg = 0.0;
+  if (!(*J > 0.0) || !std::isfinite(psi)) return psi;
+  if (conservative) {
+    double H[DIM * DIM];
+    *ehg = 0.25 * hourglass_moment<DIM>(x, i, b, nb, F, coeff, H);
+    const double s = 0.5 / Vi;
+    for (int r = 0; r < DIM; r++)
+      for (int c = 0; c < DIM; c++) P[3 * r + c] += s * H[DIM * r + c];
+  }
+  pack_row<DIM, ORDER>(Vi, P, Q, F, need_K ? K : nullptr, alpha_i, sumg, row, fown, with_R);
+  return psi;
 }
 
 /* Pairs: with Newton's third law (SCATTER) the viscous and hourglass pair
