@@ -1,0 +1,411 @@
+/* ----------------------------------------------------------------------
+   USER-TLSPH: pair_style tlsph/kk (pair_tlsph_kokkos.h, doc/pair_tlsph_kokkos.rst)
+------------------------------------------------------------------------- */
+
+#ifndef TLSPH_KOKKOS
+#define TLSPH_KOKKOS
+#endif
+
+#include "pair_tlsph_kokkos.h"
+
+#include "atom_kokkos.h"
+#include "atom_masks.h"
+#include "atom_vec_peri_kokkos.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_tlsph_bonds.h"
+#include "force.h"
+#include "kokkos.h"
+#include "pair_tlsph_step.h"
+#include "update.h"
+#include "utils.h"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+using namespace LAMMPS_NS;
+
+namespace {
+template <class T>
+using HostUnmanaged = Kokkos::View<T *, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
+
+// host array h[0..n) -> device view d (grown, with slack, when too short)
+template <class View, class T> void upload(View &d, const T *h, size_t n, const char *name)
+{
+  if (d.extent(0) < n)
+    d = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name)), n + n / 8 + 16);
+  if (n == 0) return;
+  Kokkos::deep_copy(Kokkos::subview(d, std::make_pair(size_t(0), n)),
+                    HostUnmanaged<const T>(h, n));
+}
+
+// device view d[first .. first + n) -> host array h[0..n)
+template <class View, class T> void download(T *h, const View &d, size_t first, size_t n)
+{
+  if (n == 0) return;
+  Kokkos::deep_copy(HostUnmanaged<T>(h, n), Kokkos::subview(d, std::make_pair(first, first + n)));
+}
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+template <class DeviceType>
+PairTLSPHKokkos<DeviceType>::PairTLSPHKokkos(LAMMPS *lmp) : PairTLSPH(lmp)
+{
+  kokkosable = 1;
+  atomKK = (AtomKokkos *) atom;
+  execution_space = ExecutionSpaceFromDevice<DeviceType>::space;
+  datamask_read = X_MASK | V_MASK | F_MASK | TYPE_MASK | ENERGY_MASK | VIRIAL_MASK;
+  datamask_modify = F_MASK | ENERGY_MASK | VIRIAL_MASK;
+  kk_nmax = 0;
+  host_current = 0;
+  host_step = -1;
+  first_recv = 0;
+}
+
+template <class DeviceType> PairTLSPHKokkos<DeviceType>::~PairTLSPHKokkos() {}
+
+/* ---------------------------------------------------------------------- */
+
+template <class DeviceType> void PairTLSPHKokkos<DeviceType>::init_style()
+{
+  PairTLSPH::init_style();
+  if (!dynamic_cast<AtomVecPeriKokkos *>(atom->avec))
+    error->all(FLERR, "pair tlsph/kk requires atom_style peri/kk (run with -k on, or use "
+                      "pair_style tlsph without /kk)");
+  // the kernels use the gather form of the stress term: the packed rows
+  // carry R = V P Q (pair_tlsph.h), whatever newton_pair is
+  gather_rows = 1;
+  comm_forward = packed_size();
+  kk_nmax = 0;    // row sizes may have changed: reallocate the device views
+
+  // restart files name the pair style by force->pair_style: give it the CPU
+  // style's name (as newer LAMMPS versions do with every suffix), so that a
+  // file written with -k on is read by pair_style tlsph, and by tlsph/kk with
+  // -sf kk (atom_style peri/kk does the same for the atom style)
+  if (force->pair == this && force->pair_style && utils::strmatch(force->pair_style, "^tlsph/kk")) {
+    delete[] force->pair_style;
+    force->pair_style = utils::strdup("tlsph");
+  }
+
+  // materials, per type, to the device (pair_coeff cannot change them during a run)
+  const int nt = atom->ntypes + 1;
+  d_mat = Kokkos::View<Material *, DeviceType>("tlsph/kk:mat", nt);
+  d_pm = Kokkos::View<TLSPH::PairMaterial *, DeviceType>("tlsph/kk:pairmat", nt);
+  auto h_mat = Kokkos::create_mirror_view(d_mat);
+  auto h_pm = Kokkos::create_mirror_view(d_pm);
+  for (int t = 0; t < nt && t < (int) mat.size(); t++) h_mat(t) = mat[t];
+  for (int t = 0; t < nt && t < (int) pairmat.size(); t++) h_pm(t) = pairmat[t];
+  Kokkos::deep_copy(d_mat, h_mat);
+  Kokkos::deep_copy(d_pm, h_pm);
+}
+
+/* per-particle device views for atom->nmax particles */
+template <class DeviceType> void PairTLSPHKokkos<DeviceType>::grow_device()
+{
+  if (atom->nmax <= kk_nmax) return;
+  kk_nmax = atom->nmax;
+  auto make = [&](dview &v, int per, const char *name) {
+    v = dview(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name)),
+              (size_t) kk_nmax * per);
+  };
+  make(d_F, 9, "tlsph/kk:F");
+  make(d_P, 9, "tlsph/kk:P");
+  make(d_pk, packed_size(), "tlsph/kk:packed");
+  make(d_fown, 3, "tlsph/kk:fown");
+  make(d_psi, 1, "tlsph/kk:psi");
+  make(d_ehg, 1, "tlsph/kk:ehg");
+  make(d_fhg, 3, "tlsph/kk:f_hg");
+  make(d_fvisc, 3, "tlsph/kk:f_visc");
+}
+
+/* the bond cache (built on the host by PairTLSPH::build_bond_cache) and the
+   per-particle data it fixes until the next neighbor build, to the device */
+template <class DeviceType> void PairTLSPHKokkos<DeviceType>::upload_bond_cache()
+{
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  const size_t nb = bond_start[nlocal];
+  upload(d_start, bond_start, nlocal + 1, "tlsph/kk:bond_start");
+  upload(d_nbond, nbond, nlocal, "tlsph/kk:nbond");
+  upload(d_bj, lean.j, nb, "tlsph/kk:bond_j");
+  upload(d_bg, lean.g, nb * dim, "tlsph/kk:bond_g");
+  upload(d_bw, lean.w, nb * 2, "tlsph/kk:bond_w");
+  upload(d_Q, Q[0], (size_t) nlocal * correction_size(), "tlsph/kk:Q");
+  upload(d_sumg, sumg[0], (size_t) nlocal * 3, "tlsph/kk:sumg");
+  upload(d_x0c, x0c[0], (size_t) nall * 3, "tlsph/kk:x0c");
+}
+
+/* ----------------------------------------------------------------------
+   pass (1): F, stress and the packed row of every local particle; returns
+   the first particle with det F <= 0 or a non-finite energy, or -1
+------------------------------------------------------------------------- */
+
+template <class DeviceType>
+template <int DIM, int ORDER, int LAWS>
+int PairTLSPHKokkos<DeviceType>::deformation_kernel()
+{
+  using TLSPH::StridedRows;
+  const int nlocal = atom->nlocal;
+  auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
+  const StridedRows x{atomKK->k_x.template view<DeviceType>().data(), 3};
+  const TLSPH::TypeArray type{atomKK->k_type.template view<DeviceType>().data()};
+  const double *vfrac = avec->k_vfrac.template view<DeviceType>().data();
+  const int *start = d_start.data(), *nb = d_nbond.data(), *bj = d_bj.data();
+  const double *bg = d_bg.data(), *bw = d_bw.data(), *x0c = d_x0c.data();
+  const double *Q = d_Q.data(), *sumg = d_sumg.data();
+  double *F = d_F.data(), *P = d_P.data(), *pk = d_pk.data(), *fown = d_fown.data();
+  double *psi = d_psi.data(), *ehg = d_ehg.data();
+  const Material *mt = d_mat.data();
+  const TLSPH::PairMaterial *pm = d_pm.data();
+  const int qs = correction_size(), ps = packed_size(), pstress = plane_stress, ord = order;
+  const TLSPH::CubicSpline kern = kernel;
+  const bool need_K = viscosity_active(), cons = (hg_form == 2 && gamma != 0.0);
+  const double g = gamma, alpha0 = alpha;
+
+  int bad = nlocal;
+  Kokkos::parallel_reduce(
+      "tlsph/kk:deformation", Kokkos::RangePolicy<DeviceType>(0, nlocal),
+      KOKKOS_LAMBDA(const int i, int &first) {
+        const int s = start[i];
+        const double Vi = vfrac[i];
+        const TLSPH::LeanBonds<DIM, StridedRows> b{
+            bj + s, bg + DIM * s, bw + 2 * s, StridedRows{x0c, 3}, x0c + 3 * i, kern, Vi, ord};
+        double *Fi = F + 9 * i;
+        TLSPH::deformation_gradient_bonds<DIM>(x, i, b, nb[i], Fi);
+        const TLSPH::HourglassWeights<decltype(b), TLSPH::TypeArray> coeff(pm, type, b, g, i, Vi);
+        double J;
+        psi[i] = PairTLSPH::stress_row<DIM, ORDER, LAWS>(
+            mt[type(i)], pstress, Fi, P + 9 * i, need_K, cons, x, i, b, nb[i], coeff, Vi,
+            Q + qs * i, alpha0, sumg + 3 * i, true, pk + (long) ps * i, fown + 3 * i, ehg + i,
+            &J);
+        if (!(J > 0.0) || !std::isfinite(psi[i])) first = (i < first) ? i : first;
+      },
+      Kokkos::Min<int>(bad));
+  return bad < nlocal ? bad : -1;
+}
+
+/* ----------------------------------------------------------------------
+   pass (3): stress, viscous and hourglass forces, gather form; the
+   hourglass and viscous parts go to the bond fix's work tallies
+------------------------------------------------------------------------- */
+
+template <class DeviceType>
+template <int DIM, int ORDER, int HG, int VISC, int VIRIAL>
+void PairTLSPHKokkos<DeviceType>::force_kernel(double *vir)
+{
+  using TLSPH::StridedRows;
+  const int nlocal = atom->nlocal;
+  auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
+  const StridedRows x{atomKK->k_x.template view<DeviceType>().data(), 3};
+  const StridedRows v{atomKK->k_v.template view<DeviceType>().data(), 3};
+  double *f = atomKK->k_f.template view<DeviceType>().data();
+  const TLSPH::TypeArray type{atomKK->k_type.template view<DeviceType>().data()};
+  const double *vfrac = avec->k_vfrac.template view<DeviceType>().data();
+  const int *start = d_start.data(), *nb = d_nbond.data(), *bj = d_bj.data();
+  const double *bg = d_bg.data(), *bw = d_bw.data(), *x0c = d_x0c.data();
+  const double *P = d_P.data(), *fown = d_fown.data();
+  const StridedRows pkr{d_pk.data(), packed_size()};
+  double *fhg = d_fhg.data(), *fvisc = d_fvisc.data();
+  const TLSPH::PairMaterial *pm = d_pm.data();
+  const TLSPH::CubicSpline kern = kernel;
+  const int ord = order;
+  const double hh = h, bb = beta, gg = gamma;
+
+  EV_FLOAT ev;
+  Kokkos::parallel_reduce(
+      "tlsph/kk:forces", Kokkos::RangePolicy<DeviceType>(0, nlocal),
+      KOKKOS_LAMBDA(const int i, EV_FLOAT &acc) {
+        const int s = start[i];
+        const double Vi = vfrac[i];
+        const TLSPH::LeanBonds<DIM, StridedRows> b{
+            bj + s, bg + DIM * s, bw + 2 * s, StridedRows{x0c, 3}, x0c + 3 * i, kern, Vi, ord};
+        double fs[3] = {fown[3 * i], fown[3 * i + 1], fown[3 * i + 2]};
+        double fv[3] = {0.0, 0.0, 0.0}, fh[3] = {0.0, 0.0, 0.0};
+        const TLSPH::VirialTally tally{acc.v};
+        TLSPH::particle_force_bonds<DIM, ORDER, HG, VISC, VIRIAL, 0>(
+            i, Vi, b, nb[i], x, v, pkr, type, pm, hh, bb, gg, P + 9 * i, fs, fv, fh, tally);
+        for (int d = 0; d < DIM; d++) f[3 * i + d] += fs[d] + fv[d] + fh[d];
+        for (int d = 0; d < 3; d++) {
+          fhg[3 * i + d] = (HG != 2) ? fh[d] : 0.0;
+          fvisc[3 * i + d] = fv[d];
+        }
+      },
+      ev);
+  if (VIRIAL)
+    for (int k = 0; k < 6; k++) vir[k] += ev.v[k];
+}
+
+template <class DeviceType>
+template <int DIM, int ORDER>
+void PairTLSPHKokkos<DeviceType>::dispatch_force(int hg, int visc, int vir, double *vr)
+{
+  const int key = hg + 3 * visc + 6 * vir;
+  switch (key) {
+    // clang-format off
+    case 0:  force_kernel<DIM, ORDER, 0, 0, 0>(vr); break;
+    case 1:  force_kernel<DIM, ORDER, 1, 0, 0>(vr); break;
+    case 2:  force_kernel<DIM, ORDER, 2, 0, 0>(vr); break;
+    case 3:  force_kernel<DIM, ORDER, 0, 1, 0>(vr); break;
+    case 4:  force_kernel<DIM, ORDER, 1, 1, 0>(vr); break;
+    case 5:  force_kernel<DIM, ORDER, 2, 1, 0>(vr); break;
+    case 6:  force_kernel<DIM, ORDER, 0, 0, 1>(vr); break;
+    case 7:  force_kernel<DIM, ORDER, 1, 0, 1>(vr); break;
+    case 8:  force_kernel<DIM, ORDER, 2, 0, 1>(vr); break;
+    case 9:  force_kernel<DIM, ORDER, 0, 1, 1>(vr); break;
+    case 10: force_kernel<DIM, ORDER, 1, 1, 1>(vr); break;
+    default: force_kernel<DIM, ORDER, 2, 1, 1>(vr); break;
+      // clang-format on
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+template <class DeviceType> void PairTLSPHKokkos<DeviceType>::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  host_current = 0;
+  auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
+
+  // after a neighbor build the bond cache is rebuilt on the host (as tlsph
+  // does) from x, x0, vfrac, type and the bond fix, then copied to the device
+  if (bonds->rebuild) {
+    atomKK->sync(Host, X_MASK | TYPE_MASK | TAG_MASK);
+    avec->k_vfrac.template sync<LMPHostType>();
+    avec->k_x0.template sync<LMPHostType>();
+  }
+  if (refresh_bond_cache()) upload_bond_cache();
+  grow_device();
+
+  atomKK->sync(execution_space, datamask_read);
+  avec->k_vfrac.template sync<DeviceType>();
+  if (eflag || vflag) atomKK->modified(execution_space, datamask_modify);
+  else atomKK->modified(execution_space, F_MASK);
+
+  // (1) F, stress and packed rows
+  int bad;
+  if (dim == 2) {
+    if (order == 1) bad = any_orthotropic ? deformation_kernel<2, 1, 1>() : deformation_kernel<2, 1, 0>();
+    else bad = any_orthotropic ? deformation_kernel<2, 2, 1>() : deformation_kernel<2, 2, 0>();
+  } else {
+    if (order == 1) bad = any_orthotropic ? deformation_kernel<3, 1, 1>() : deformation_kernel<3, 1, 0>();
+    else bad = any_orthotropic ? deformation_kernel<3, 2, 1>() : deformation_kernel<3, 2, 0>();
+  }
+  if (bad >= 0) {
+    double Fi[9];
+    download(Fi, d_F, (size_t) 9 * bad, 9);
+    unstable_particle(bad, TLSPH::mat_det(Fi));
+  }
+
+  // (2) the packed rows of the ghosts
+  comm->forward_comm_pair(this);
+
+  // (3) forces
+  const int hg = (gamma != 0.0) ? hg_form : 0;
+  const int visc = viscosity_active() ? 1 : 0;
+  const int vir = vflag_global ? 1 : 0;
+  if (dim == 2) {
+    if (order == 1) dispatch_force<2, 1>(hg, visc, vir, virial);
+    else dispatch_force<2, 2>(hg, visc, vir, virial);
+  } else {
+    if (order == 1) dispatch_force<3, 1>(hg, visc, vir, virial);
+    else dispatch_force<3, 2>(hg, visc, vir, virial);
+  }
+
+  // the bond fix tallies the work of the hourglass and viscous forces on the
+  // host at the end of the step
+  const int nlocal = atom->nlocal;
+  download(bonds->f_hg[0], d_fhg, 0, (size_t) 3 * nlocal);
+  download(bonds->f_visc[0], d_fvisc, 0, (size_t) 3 * nlocal);
+
+  if (eflag_either) {
+    sync_host();
+    tally_energy();
+  }
+}
+
+/* F, psi and the hourglass energy of the local particles to the host
+   arrays of PairTLSPH (the computes read them there) */
+template <class DeviceType> void PairTLSPHKokkos<DeviceType>::sync_host()
+{
+  if (host_current && host_step == update->ntimestep) return;
+  if (kk_nmax == 0 || d_F.extent(0) == 0) return;    // no force call yet
+  const int nlocal = atom->nlocal;
+  download(F[0], d_F, 0, (size_t) 9 * nlocal);
+  download(P[0], d_P, 0, (size_t) 9 * nlocal);
+  download(psi, d_psi, 0, nlocal);
+  download(ehg, d_ehg, 0, nlocal);
+  host_current = 1;
+  host_step = update->ntimestep;
+}
+
+/* ---------------------------------------------------------------------- */
+
+template <class DeviceType>
+int PairTLSPHKokkos<DeviceType>::pack_forward_comm_kokkos(int n, DAT::tdual_int_2d k_sendlist,
+                                                         int iswap, DAT::tdual_xfloat_1d &buf,
+                                                         int /*pbc_flag*/, int * /*pbc*/)
+{
+  const auto list = k_sendlist.template view<DeviceType>();
+  const auto out = buf.template view<DeviceType>();
+  const double *pk_ = d_pk.data();
+  const int ps = packed_size();
+  Kokkos::parallel_for(
+      "tlsph/kk:pack", Kokkos::RangePolicy<DeviceType>(0, n), KOKKOS_LAMBDA(const int ii) {
+        const int j = list(iswap, ii);
+        for (int k = 0; k < ps; k++) out(ps * ii + k) = pk_[(long) ps * j + k];
+      });
+  return n * ps;
+}
+
+template <class DeviceType>
+void PairTLSPHKokkos<DeviceType>::unpack_forward_comm_kokkos(int n, int first,
+                                                            DAT::tdual_xfloat_1d &buf)
+{
+  const auto in = buf.template view<DeviceType>();
+  double *pk_ = d_pk.data();
+  const int ps = packed_size();
+  Kokkos::parallel_for(
+      "tlsph/kk:unpack", Kokkos::RangePolicy<DeviceType>(0, n), KOKKOS_LAMBDA(const int ii) {
+        for (int k = 0; k < ps; k++) pk_[(long) ps * (first + ii) + k] = in(ps * ii + k);
+      });
+}
+
+/* host path of the forward communication (tlsph/kk/host, or LAMMPS's
+   classic communication): the rows go through PairTLSPH's host arrays */
+template <class DeviceType>
+int PairTLSPHKokkos<DeviceType>::pack_forward_comm(int n, int *list, double *buf, int pbc_flag,
+                                                   int *pbc)
+{
+  // every row a swap may send: local particles and ghosts received earlier
+  const int nall = atom->nlocal + atom->nghost;
+  download(pk[0], d_pk, 0, (size_t) packed_size() * nall);
+  return PairTLSPH::pack_forward_comm(n, list, buf, pbc_flag, pbc);
+}
+
+template <class DeviceType>
+void PairTLSPHKokkos<DeviceType>::unpack_forward_comm(int n, int first, double *buf)
+{
+  PairTLSPH::unpack_forward_comm(n, first, buf);
+  const int ps = packed_size();
+  Kokkos::deep_copy(Kokkos::subview(d_pk, std::make_pair((size_t) ps * first,
+                                                         (size_t) ps * (first + n))),
+                    HostUnmanaged<const double>(pk[first], (size_t) ps * n));
+}
+
+template <class DeviceType> double PairTLSPHKokkos<DeviceType>::memory_usage()
+{
+  double bytes = PairTLSPH::memory_usage();
+  for (const dview *v : {&d_Q, &d_sumg, &d_F, &d_P, &d_fown, &d_pk, &d_psi, &d_ehg, &d_x0c,
+                         &d_fhg, &d_fvisc, &d_bg, &d_bw})
+    bytes += sizeof(double) * v->extent(0);
+  for (const iview *v : {&d_nbond, &d_start, &d_bj}) bytes += sizeof(int) * v->extent(0);
+  return bytes;
+}
+
+namespace LAMMPS_NS {
+template class PairTLSPHKokkos<LMPDeviceType>;
+#ifdef LMP_KOKKOS_GPU
+template class PairTLSPHKokkos<LMPHostType>;
+#endif
+}    // namespace LAMMPS_NS

@@ -1,0 +1,217 @@
+#!/usr/bin/env python3
+"""pair_style tlsph/kk and atom_style peri/kk against the CPU styles (ctest kokkos.*).
+
+All runs use one LAMMPS, built by scripts/build-lammps-plugin.sh kokkos with
+the KOKKOS, PERI and PLUGIN packages and this package compiled in (Kokkos host
+backend): the CPU styles without -k, the /kk styles with -k on -sf kk and
+explicit /kk style names (-var kk /kk), so a missing /kk style is an error,
+not a silent fall-back to the CPU style.
+
+  --case forces    in.forces (run 0 on a deformed, moving body with two types):
+                   2D/3D, isotropic/orthotropic plies, thesis/conservative
+                   hourglass, linear/quadratic gradient. The forces, the stress
+                   compute, the energies and the pressure of tlsph/kk equal those
+                   of tlsph (newton on: the scatter form; newton off: the gather
+                   form that /kk uses) to TOL relative to the largest value.
+  --case mpi       ../lammps/mpi/run_mpi.py with the /kk styles: -np 1, 2, 4 (and
+                   -np 2 newton off) give the same final state (atoms migrate), and
+                   for the laminate its restart test (files written and read by /kk).
+  --case restart   a restart written by /kk is read by the CPU styles, and one
+                   written by the CPU styles is read by /kk; each continued run equals
+                   the CPU-written, CPU-read one to TOL (the /kk step is bitwise the
+                   CPU newton-off step, used here as the CPU reference).
+"""
+import argparse
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "lammps", "mpi"))
+from run_mpi import read_dump  # noqa: E402
+
+MATERIALS = os.path.join(HERE, "..", "..", "potentials", "tlsph_materials.tlsph")
+TOL = 1e-12
+KK = ["-k", "on", "-sf", "kk", "-var", "kk", "/kk"]
+
+
+def lmp_run(args, tag, inp, extra, kk, np=1):
+    cmd = []
+    if np > 1:
+        cmd = [args.mpiexec, "--oversubscribe"]
+        if hasattr(os, "geteuid") and os.geteuid() == 0:
+            cmd += ["--allow-run-as-root"]
+        cmd += ["-np", str(np)]
+    cmd += [args.lmp] + (KK if kk else []) + ["-in", inp, "-log", tag + ".log", "-screen",
+                                               "none", "-var", "out", tag] + list(extra)
+    p = subprocess.run(cmd, cwd=args.workdir, capture_output=True, text=True,
+                       timeout=args.timeout)
+    log = open(os.path.join(args.workdir, tag + ".log")).read() \
+        if os.path.exists(os.path.join(args.workdir, tag + ".log")) else ""
+    out = p.stdout + p.stderr + log
+    problems = []
+    if p.returncode != 0:
+        problems.append("exit code %d" % p.returncode)
+    m = re.search(r"^ERROR.*$", out, re.M)
+    if m:
+        problems.append(m.group(0))
+    if re.search(r"\bnan\b|\bNaN\b|-nan", out):
+        problems.append("NaN in output")
+    if problems:
+        print("\n".join(out.splitlines()[-20:]))
+    return out, problems
+
+
+def thermo(log):
+    """the last thermo line as {column: value}"""
+    lines = log.splitlines()
+    k = max(i for i, l in enumerate(lines) if l.split()[:1] == ["Step"])
+    return dict(zip(lines[k].split(), (float(x) for x in lines[k + 1].split())))
+
+
+def rel_diff(a, b, keys):
+    scale = max(abs(a[i][k]) for i in a for k in keys)
+    diff = max(abs(a[i][k] - b[i][k]) for i in a for k in keys)
+    return diff, scale, (diff / scale if scale > 0 else diff)
+
+
+def case_forces(args):
+    inp = os.path.join(HERE, "in.forces")
+    matrix = [("2", "iso", "thesis", "linear"), ("2", "iso", "conservative", "quadratic"),
+              ("3", "iso", "thesis", "quadratic"), ("3", "ortho", "thesis", "linear"),
+              ("3", "ortho", "conservative", "quadratic")]
+    problems = []
+    for dim, law, hg, grad in matrix:
+        name = "%sd_%s_%s_%s" % (dim, law, hg, grad)
+        extra = ["-var", "dim", dim, "-var", "law", law, "-var", "hg", hg, "-var", "grad", grad]
+        runs = {}
+        for tag, kk, newton in (("cpu_on", False, "on"), ("cpu_off", False, "off"),
+                                ("kk", True, "on")):
+            t = "%s_%s" % (name, tag)
+            log, prob = lmp_run(args, t, inp, extra + ["-var", "newton", newton], kk)
+            problems += ["%s: %s" % (t, p) for p in prob]
+            if prob:
+                break
+            cols, rows = read_dump(os.path.join(args.workdir, t + ".dump"))
+            runs[tag] = (thermo(log), cols, rows)
+        if len(runs) < 3:
+            continue
+        _, cols, kk_rows = runs["kk"]
+        force = [cols.index(c) for c in ("fx", "fy", "fz")]
+        stress = [cols.index(c) for c in ("c_sig[1]", "c_sig[2]", "c_sig[4]")]
+        for ref in ("cpu_on", "cpu_off"):
+            th, _, rows = runs[ref]
+            if sorted(rows) != sorted(kk_rows):
+                problems.append("%s: different atom IDs" % name)
+                continue
+            for what, keys in (("force", force), ("stress", stress)):
+                diff, scale, rel = rel_diff(rows, kk_rows, keys)
+                ok = rel <= TOL and math.isfinite(rel)
+                print("%-34s kk vs %-7s %-6s max|diff| %.3e of %.3e: %.2e %s"
+                      % (name, ref, what, diff, scale, rel, "ok" if ok else "FAIL"))
+                if not ok:
+                    problems.append("%s: %s vs %s differs by %.3g" % (name, what, ref, rel))
+            kth = runs["kk"][0]
+            pscale = max(abs(th[k]) for k in ("Pxx", "Pyy", "Pxy"))
+            worst = 0.0
+            for k in ("PotEng", "c_e[1]", "c_e[2]", "Press", "Pxx", "Pyy", "Pxy"):
+                scale = pscale if k.startswith("P") and k != "PotEng" else abs(th[k])
+                rel = abs(th[k] - kth[k]) / scale if scale > 0 else abs(th[k] - kth[k])
+                worst = max(worst, rel) if math.isfinite(rel) else math.inf
+                if not (rel <= TOL):
+                    problems.append("%s: %s vs %s differs by %.3g" % (name, k, ref, rel))
+            print("%-34s kk vs %-7s energies, pressure: largest relative difference %.2e %s"
+                  % (name, ref, worst, "ok" if worst <= TOL else "FAIL"))
+    return problems
+
+
+def case_mpi(args):
+    # a launcher that gives run_mpi.py's lmp the /kk styles
+    wrapper = os.path.join(args.workdir, "lmp_kk.sh")
+    with open(wrapper, "w") as fp:
+        fp.write('#!/bin/sh\nexec "%s" %s "$@"\n' % (args.lmp, " ".join(KK)))
+    os.chmod(wrapper, 0o755)
+    problems = []
+    mpi = os.path.join(HERE, "..", "lammps", "mpi")
+    for case, extra in (("2d", []), ("laminate_3d",
+                                     ["--restart-input", os.path.join(mpi, "in.laminate_3d_restart")])):
+        wd = os.path.join(args.workdir, "mpi_" + case)
+        os.makedirs(wd, exist_ok=True)
+        shutil.copy(MATERIALS, wd)
+        cmd = [sys.executable, os.path.join(mpi, "run_mpi.py"), "--mpiexec", args.mpiexec,
+               "--lmp", wrapper, "--input", os.path.join(mpi, "in." + case), "--workdir", wd,
+               "--np", "1", "2", "4"] + extra
+        print("$ " + " ".join(cmd))
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=4 * args.timeout)
+        print(p.stdout + p.stderr)
+        if p.returncode != 0:
+            problems.append("run_mpi.py %s failed (exit %d)" % (case, p.returncode))
+    return problems
+
+
+def case_restart(args):
+    mpi = os.path.join(HERE, "..", "lammps", "mpi")
+    first, second = os.path.join(mpi, "in.laminate_3d"), os.path.join(mpi, "in.laminate_3d_restart")
+    half = "150"
+    problems = []
+    finals = {}
+    for writer in ("cpu", "kk"):
+        rfile = "half_" + writer
+        _, prob = lmp_run(args, "first_" + writer, first,
+                          ["-var", "newton", "off", "-var", "steps", half, "-var", "restart", rfile],
+                          writer == "kk")
+        problems += ["first_%s: %s" % (writer, p) for p in prob]
+        if prob:
+            continue
+        for reader in ("cpu", "kk"):
+            t = "%s_to_%s" % (writer, reader)
+            _, prob = lmp_run(args, t, second,
+                              ["-var", "newton", "off", "-var", "file", rfile, "-var", "steps", half],
+                              reader == "kk")
+            problems += ["%s: %s" % (t, p) for p in prob]
+            if not prob:
+                finals[t] = read_dump(os.path.join(args.workdir, t + ".final.dump"))
+    if "cpu_to_cpu" not in finals:
+        return problems + ["no CPU-written, CPU-read reference"]
+    cols, ref = finals["cpu_to_cpu"]
+    for t in ("kk_to_cpu", "cpu_to_kk", "kk_to_kk"):
+        if t not in finals:
+            continue
+        _, rows = finals[t]
+        if sorted(rows) != sorted(ref):
+            problems.append("%s: different atom IDs" % t)
+            continue
+        for what, keys in (("position", ("xu", "yu", "zu")), ("velocity", ("vx", "vy", "vz")),
+                           ("force", ("fx", "fy", "fz"))):
+            diff, scale, rel = rel_diff(ref, rows, [cols.index(k) for k in keys])
+            ok = rel <= TOL and math.isfinite(rel)
+            print("%-10s vs cpu_to_cpu %-8s max|diff| %.3e of %.3e: %.2e %s"
+                  % (t, what, diff, scale, rel, "ok" if ok else "FAIL"))
+            if not ok:
+                problems.append("%s: %s differs by %.3g" % (t, what, rel))
+    return problems
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--lmp", required=True, help="the KOKKOS-enabled lmp (build-lammps-plugin.sh kokkos)")
+    ap.add_argument("--mpiexec", default="mpirun")
+    ap.add_argument("--workdir", required=True)
+    ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart"])
+    ap.add_argument("--timeout", type=float, default=300)
+    args = ap.parse_args()
+    os.makedirs(args.workdir, exist_ok=True)
+    shutil.copy(MATERIALS, args.workdir)
+    problems = {"forces": case_forces, "mpi": case_mpi, "restart": case_restart}[args.case](args)
+    if problems:
+        print("FAILED:\n  " + "\n  ".join(problems))
+        return 1
+    print("all checks passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
