@@ -796,6 +796,7 @@ void PairTLSPH::build_bond_cache()
                                    : "check the volume units and h");
   }
   bond_start[nlocal] = nb;
+  cache_version++;
 }
 
 // full records of the first n bonds of local particle i (g, c and the
@@ -814,17 +815,6 @@ void PairTLSPH::unpack_bonds(int i, int n, std::vector<BondCache> &b,
     make_bond(kernel, X, vfrac[i], vfrac[j], j, lean.k[s + m], b[m], kernel_scale);
     vj[m] = vfrac[j];
   }
-}
-
-// exchange bonds m1 and m2 of local particle i in the lean arrays
-void PairTLSPH::swap_bonds(int i, int m1, int m2)
-{
-  const bigint a = bond_start[i] + m1, b = bond_start[i] + m2;
-  std::swap(lean.j[a], lean.j[b]);
-  std::swap(lean.k[a], lean.k[b]);
-  for (int d = 0; d < dim; d++) std::swap(lean.g[dim * a + d], lean.g[dim * b + d]);
-  std::swap(lean.w[2 * a], lean.w[2 * b]);
-  std::swap(lean.w[2 * a + 1], lean.w[2 * b + 1]);
 }
 
 namespace {

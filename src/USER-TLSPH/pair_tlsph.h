@@ -179,6 +179,7 @@ class PairTLSPH : public Pair {
   int *bond_start;
   TLSPH::LeanArrays lean;
   int ncache_max, nstart_max;
+  int cache_version = 0;    // +1 at every build_bond_cache() (the /kk styles copy it then)
   double **x0c;       // reference positions consistent with the images of x (nmax)
   void build_bond_cache();
   void set_reference_images();
@@ -205,7 +206,6 @@ class PairTLSPH : public Pair {
     X[1] = b[1] - a[1];
     X[2] = (dim == 2) ? 0.0 : b[2] - a[2];
   }
-  void swap_bonds(int i, int m1, int m2);
 
   // LAWS 0: every type isotropic; 1: each particle picks its type's law
   template <int DIM, int ORDER, int LAWS> void compute_deformation();

@@ -397,14 +397,7 @@ void PairTLSPHDamage::deform_and_break()
           if (!rebuild)
             for (int d = 0; d < DIM; d++) sumg[i][d] -= bg[DIM * m + d];
           // keep the leading bonds first (pair_tlsph.h: nlead)
-          if (m < nlead[i]) {
-            swap_bonds(i, m, nlead[i] - 1);
-            swap_bonds(i, nlead[i] - 1, n - 1);
-            nlead[i]--;
-          } else {
-            swap_bonds(i, m, n - 1);
-          }
-          n--;
+          TLSPH::drop_bond<DIM>(bj, bg, lean.w + 2 * (bigint) s, lean.k + s, m, nlead[i], n);
           changed = true;
           continue;
         }

@@ -68,7 +68,7 @@ class PairTLSPHDamage : public PairTLSPH {
   void after_deformation() override;
   bool viscosity_active() const override { return alpha > 0.0 || beta > 0.0 || alpha_d > 0.0; }
 
- private:
+ protected:    // (the /kk variant reads these)
   double alpha_d;          // viscosity alpha on damaged particles (phi' > 0)
   int absolute;            // 1: |stretch| >= s_c breaks (thesis Eq. 2.27), 0: tension only
   int rebuild;             // 1: correction rebuilt from intact bonds, 0: kept from setup

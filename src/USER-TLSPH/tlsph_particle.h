@@ -126,6 +126,42 @@ struct VirialTally {
   }
 };
 
+/* A particle's bond segment in the lean layout (arrays j, g (DIM per bond),
+   w (2 per bond), k), intact bonds first, the first nlead of them leading
+   their pair (pair_tlsph.h): drop_bond() moves bond m behind the intact ones
+   (where a policy may keep it for the correction) and keeps the leading
+   bonds first; the bond moved into slot m is the next to examine. Used by
+   tlsph/damage on the CPU, in the tlsph/damage/kk kernel and in the host
+   replay of the kernel's breaks, so that all three leave the same order. */
+template <int DIM>
+TLSPH_INLINE void swap_bond(int *j, double *g, double *w, int *k, int a, int b)
+{
+  const int tj = j[a], tk = k[a];
+  j[a] = j[b], j[b] = tj;
+  k[a] = k[b], k[b] = tk;
+  for (int d = 0; d < DIM; d++) {
+    const double t = g[DIM * a + d];
+    g[DIM * a + d] = g[DIM * b + d], g[DIM * b + d] = t;
+  }
+  for (int d = 0; d < 2; d++) {
+    const double t = w[2 * a + d];
+    w[2 * a + d] = w[2 * b + d], w[2 * b + d] = t;
+  }
+}
+
+template <int DIM>
+TLSPH_INLINE void drop_bond(int *j, double *g, double *w, int *k, int m, int &nlead, int &n)
+{
+  if (m < nlead) {
+    swap_bond<DIM>(j, g, w, k, m, nlead - 1);
+    swap_bond<DIM>(j, g, w, k, nlead - 1, n - 1);
+    nlead--;
+  } else {
+    swap_bond<DIM>(j, g, w, k, m, n - 1);
+  }
+  n--;
+}
+
 // the polynomial basis of the corrected gradient
 template <int DIM, int ORDER> struct Basis {
   static constexpr int size = (ORDER == 1) ? DIM : (DIM == 2 ? 5 : 9);

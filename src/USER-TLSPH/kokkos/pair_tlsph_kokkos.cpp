@@ -16,6 +16,7 @@
 #include "fix_tlsph_bonds.h"
 #include "force.h"
 #include "kokkos.h"
+#include "pair_tlsph_damage.h"
 #include "pair_tlsph_step.h"
 #include "update.h"
 #include "utils.h"
@@ -50,8 +51,8 @@ template <class View, class T> void download(T *h, const View &d, size_t first, 
 
 /* ---------------------------------------------------------------------- */
 
-template <class DeviceType>
-PairTLSPHKokkos<DeviceType>::PairTLSPHKokkos(LAMMPS *lmp) : PairTLSPH(lmp)
+template <class DeviceType, class Base>
+PairTLSPHKokkosT<DeviceType, Base>::PairTLSPHKokkosT(LAMMPS *lmp) : Base(lmp)
 {
   kokkosable = 1;
   atomKK = (AtomKokkos *) atom;
@@ -61,16 +62,16 @@ PairTLSPHKokkos<DeviceType>::PairTLSPHKokkos(LAMMPS *lmp) : PairTLSPH(lmp)
   kk_nmax = 0;
   host_current = 0;
   host_step = -1;
-  first_recv = 0;
+  uploaded_version = -1;
 }
 
-template <class DeviceType> PairTLSPHKokkos<DeviceType>::~PairTLSPHKokkos() {}
 
 /* ---------------------------------------------------------------------- */
 
-template <class DeviceType> void PairTLSPHKokkos<DeviceType>::init_style()
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::init_style()
 {
-  PairTLSPH::init_style();
+  Base::init_style();
   if (!dynamic_cast<AtomVecPeriKokkos *>(atom->avec))
     error->all(FLERR, "pair tlsph/kk requires atom_style peri/kk (run with -k on, or use "
                       "pair_style tlsph without /kk)");
@@ -102,7 +103,8 @@ template <class DeviceType> void PairTLSPHKokkos<DeviceType>::init_style()
 }
 
 /* per-particle device views for atom->nmax particles */
-template <class DeviceType> void PairTLSPHKokkos<DeviceType>::grow_device()
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::grow_device()
 {
   if (atom->nmax <= kk_nmax) return;
   kk_nmax = atom->nmax;
@@ -122,18 +124,35 @@ template <class DeviceType> void PairTLSPHKokkos<DeviceType>::grow_device()
 
 /* the bond cache (built on the host by PairTLSPH::build_bond_cache) and the
    per-particle data it fixes until the next neighbor build, to the device */
-template <class DeviceType> void PairTLSPHKokkos<DeviceType>::upload_bond_cache()
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::upload_bond_cache()
 {
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   const size_t nb = bond_start[nlocal];
   upload(d_start, bond_start, nlocal + 1, "tlsph/kk:bond_start");
   upload(d_nbond, nbond, nlocal, "tlsph/kk:nbond");
+  upload(d_nlead, nlead, nlocal, "tlsph/kk:nlead");
   upload(d_bj, lean.j, nb, "tlsph/kk:bond_j");
   upload(d_bg, lean.g, nb * dim, "tlsph/kk:bond_g");
   upload(d_bw, lean.w, nb * 2, "tlsph/kk:bond_w");
+  upload(d_bk, lean.k, nb, "tlsph/kk:bond_k");
   upload(d_Q, Q[0], (size_t) nlocal * correction_size(), "tlsph/kk:Q");
   upload(d_sumg, sumg[0], (size_t) nlocal * 3, "tlsph/kk:sumg");
   upload(d_x0c, x0c[0], (size_t) nall * 3, "tlsph/kk:x0c");
+  uploaded_version = cache_version;
+}
+
+/* pass (1) of tlsph/kk: the deformation kernel for the dimension, gradient
+   order and laws of the scene */
+template <class DeviceType, class Base>
+int PairTLSPHKokkosT<DeviceType, Base>::deformation_step()
+{
+  if (dim == 2) {
+    if (order == 1) return any_orthotropic ? deformation_kernel<2, 1, 1>() : deformation_kernel<2, 1, 0>();
+    return any_orthotropic ? deformation_kernel<2, 2, 1>() : deformation_kernel<2, 2, 0>();
+  }
+  if (order == 1) return any_orthotropic ? deformation_kernel<3, 1, 1>() : deformation_kernel<3, 1, 0>();
+  return any_orthotropic ? deformation_kernel<3, 2, 1>() : deformation_kernel<3, 2, 0>();
 }
 
 /* ----------------------------------------------------------------------
@@ -141,9 +160,9 @@ template <class DeviceType> void PairTLSPHKokkos<DeviceType>::upload_bond_cache(
    the first particle with det F <= 0 or a non-finite energy, or -1
 ------------------------------------------------------------------------- */
 
-template <class DeviceType>
+template <class DeviceType, class Base>
 template <int DIM, int ORDER, int LAWS>
-int PairTLSPHKokkos<DeviceType>::deformation_kernel()
+int PairTLSPHKokkosT<DeviceType, Base>::deformation_kernel()
 {
   using TLSPH::StridedRows;
   const int nlocal = atom->nlocal;
@@ -160,7 +179,7 @@ int PairTLSPHKokkos<DeviceType>::deformation_kernel()
   const TLSPH::PairMaterial *pm = d_pm.data();
   const int qs = correction_size(), ps = packed_size(), pstress = plane_stress, ord = order;
   const TLSPH::CubicSpline kern = kernel;
-  const bool need_K = viscosity_active(), cons = (hg_form == 2 && gamma != 0.0);
+  const bool need_K = this->viscosity_active(), cons = (hg_form == 2 && gamma != 0.0);
   const double g = gamma, alpha0 = alpha;
 
   int bad = nlocal;
@@ -190,9 +209,9 @@ int PairTLSPHKokkos<DeviceType>::deformation_kernel()
    hourglass and viscous parts go to the bond fix's work tallies
 ------------------------------------------------------------------------- */
 
-template <class DeviceType>
+template <class DeviceType, class Base>
 template <int DIM, int ORDER, int HG, int VISC, int VIRIAL>
-void PairTLSPHKokkos<DeviceType>::force_kernel(double *vir)
+void PairTLSPHKokkosT<DeviceType, Base>::force_kernel(double *vir)
 {
   using TLSPH::StridedRows;
   const int nlocal = atom->nlocal;
@@ -236,9 +255,9 @@ void PairTLSPHKokkos<DeviceType>::force_kernel(double *vir)
     for (int k = 0; k < 6; k++) vir[k] += ev.v[k];
 }
 
-template <class DeviceType>
+template <class DeviceType, class Base>
 template <int DIM, int ORDER>
-void PairTLSPHKokkos<DeviceType>::dispatch_force(int hg, int visc, int vir, double *vr)
+void PairTLSPHKokkosT<DeviceType, Base>::dispatch_force(int hg, int visc, int vir, double *vr)
 {
   const int key = hg + 3 * visc + 6 * vir;
   switch (key) {
@@ -261,7 +280,8 @@ void PairTLSPHKokkos<DeviceType>::dispatch_force(int hg, int visc, int vir, doub
 
 /* ---------------------------------------------------------------------- */
 
-template <class DeviceType> void PairTLSPHKokkos<DeviceType>::compute(int eflag, int vflag)
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   host_current = 0;
@@ -274,7 +294,10 @@ template <class DeviceType> void PairTLSPHKokkos<DeviceType>::compute(int eflag,
     avec->k_vfrac.template sync<LMPHostType>();
     avec->k_x0.template sync<LMPHostType>();
   }
-  if (refresh_bond_cache()) upload_bond_cache();
+  // (tlsph/damage: the pre-cracks, once, with a cache rebuild)
+  this->refresh_bond_cache();
+  this->update_bonds();
+  if (uploaded_version != cache_version) upload_bond_cache();
   grow_device();
 
   atomKK->sync(execution_space, datamask_read);
@@ -282,27 +305,22 @@ template <class DeviceType> void PairTLSPHKokkos<DeviceType>::compute(int eflag,
   if (eflag || vflag) atomKK->modified(execution_space, datamask_modify);
   else atomKK->modified(execution_space, F_MASK);
 
-  // (1) F, stress and packed rows
-  int bad;
-  if (dim == 2) {
-    if (order == 1) bad = any_orthotropic ? deformation_kernel<2, 1, 1>() : deformation_kernel<2, 1, 0>();
-    else bad = any_orthotropic ? deformation_kernel<2, 2, 1>() : deformation_kernel<2, 2, 0>();
-  } else {
-    if (order == 1) bad = any_orthotropic ? deformation_kernel<3, 1, 1>() : deformation_kernel<3, 1, 0>();
-    else bad = any_orthotropic ? deformation_kernel<3, 2, 1>() : deformation_kernel<3, 2, 0>();
-  }
+  // (1) F, stress and packed rows (tlsph/damage: bonds break in it), then
+  // the damage and alpha_i (tlsph/damage)
+  const int bad = deformation_step();
   if (bad >= 0) {
     double Fi[9];
     download(Fi, d_F, (size_t) 9 * bad, 9);
-    unstable_particle(bad, TLSPH::mat_det(Fi));
+    this->unstable_particle(bad, TLSPH::mat_det(Fi));
   }
+  damage_step();
 
   // (2) the packed rows of the ghosts
   comm->forward_comm_pair(this);
 
   // (3) forces
   const int hg = (gamma != 0.0) ? hg_form : 0;
-  const int visc = viscosity_active() ? 1 : 0;
+  const int visc = this->viscosity_active() ? 1 : 0;
   const int vir = vflag_global ? 1 : 0;
   if (dim == 2) {
     if (order == 1) dispatch_force<2, 1>(hg, visc, vir, virial);
@@ -320,13 +338,14 @@ template <class DeviceType> void PairTLSPHKokkos<DeviceType>::compute(int eflag,
 
   if (eflag_either) {
     sync_host();
-    tally_energy();
+    this->tally_energy();
   }
 }
 
 /* F, psi and the hourglass energy of the local particles to the host
    arrays of PairTLSPH (the computes read them there) */
-template <class DeviceType> void PairTLSPHKokkos<DeviceType>::sync_host()
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::sync_host()
 {
   if (host_current && host_step == update->ntimestep) return;
   if (kk_nmax == 0 || d_F.extent(0) == 0) return;    // no force call yet
@@ -341,71 +360,81 @@ template <class DeviceType> void PairTLSPHKokkos<DeviceType>::sync_host()
 
 /* ---------------------------------------------------------------------- */
 
-template <class DeviceType>
-int PairTLSPHKokkos<DeviceType>::pack_forward_comm_kokkos(int n, DAT::tdual_int_2d k_sendlist,
-                                                         int iswap, DAT::tdual_xfloat_1d &buf,
-                                                         int /*pbc_flag*/, int * /*pbc*/)
+/* forward communication on the device: the packed rows (tlsph/damage's
+   stage 1: the damage phi), rows of comm_stride() values */
+template <class DeviceType, class Base>
+int PairTLSPHKokkosT<DeviceType, Base>::pack_forward_comm_kokkos(int n, DAT::tdual_int_2d k_sendlist,
+                                                                int iswap, DAT::tdual_xfloat_1d &buf,
+                                                                int /*pbc_flag*/, int * /*pbc*/)
 {
+  const int stage = comm_stage_now();
   const auto list = k_sendlist.template view<DeviceType>();
   const auto out = buf.template view<DeviceType>();
-  const double *pk_ = d_pk.data();
-  const int ps = packed_size();
+  const double *rows = comm_view(stage).data();
+  const int ps = comm_stride(stage);
   Kokkos::parallel_for(
       "tlsph/kk:pack", Kokkos::RangePolicy<DeviceType>(0, n), KOKKOS_LAMBDA(const int ii) {
         const int j = list(iswap, ii);
-        for (int k = 0; k < ps; k++) out(ps * ii + k) = pk_[(long) ps * j + k];
+        for (int k = 0; k < ps; k++) out(ps * ii + k) = rows[(long) ps * j + k];
       });
   return n * ps;
 }
 
-template <class DeviceType>
-void PairTLSPHKokkos<DeviceType>::unpack_forward_comm_kokkos(int n, int first,
-                                                            DAT::tdual_xfloat_1d &buf)
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::unpack_forward_comm_kokkos(int n, int first,
+                                                                   DAT::tdual_xfloat_1d &buf)
 {
+  const int stage = comm_stage_now();
   const auto in = buf.template view<DeviceType>();
-  double *pk_ = d_pk.data();
-  const int ps = packed_size();
+  double *rows = comm_view(stage).data();
+  const int ps = comm_stride(stage);
   Kokkos::parallel_for(
       "tlsph/kk:unpack", Kokkos::RangePolicy<DeviceType>(0, n), KOKKOS_LAMBDA(const int ii) {
-        for (int k = 0; k < ps; k++) pk_[(long) ps * (first + ii) + k] = in(ps * ii + k);
+        for (int k = 0; k < ps; k++) rows[(long) ps * (first + ii) + k] = in(ps * ii + k);
       });
 }
 
 /* host path of the forward communication (tlsph/kk/host, or LAMMPS's
-   classic communication): the rows go through PairTLSPH's host arrays */
-template <class DeviceType>
-int PairTLSPHKokkos<DeviceType>::pack_forward_comm(int n, int *list, double *buf, int pbc_flag,
-                                                   int *pbc)
+   classic communication): the rows go through the CPU style's host arrays */
+template <class DeviceType, class Base>
+int PairTLSPHKokkosT<DeviceType, Base>::pack_forward_comm(int n, int *list, double *buf,
+                                                         int pbc_flag, int *pbc)
 {
   // every row a swap may send: local particles and ghosts received earlier
+  const int stage = comm_stage_now();
   const int nall = atom->nlocal + atom->nghost;
-  download(pk[0], d_pk, 0, (size_t) packed_size() * nall);
-  return PairTLSPH::pack_forward_comm(n, list, buf, pbc_flag, pbc);
+  download(comm_host(stage), comm_view(stage), 0, (size_t) comm_stride(stage) * nall);
+  return Base::pack_forward_comm(n, list, buf, pbc_flag, pbc);
 }
 
-template <class DeviceType>
-void PairTLSPHKokkos<DeviceType>::unpack_forward_comm(int n, int first, double *buf)
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::unpack_forward_comm(int n, int first, double *buf)
 {
-  PairTLSPH::unpack_forward_comm(n, first, buf);
-  const int ps = packed_size();
-  Kokkos::deep_copy(Kokkos::subview(d_pk, std::make_pair((size_t) ps * first,
-                                                         (size_t) ps * (first + n))),
-                    HostUnmanaged<const double>(pk[first], (size_t) ps * n));
+  Base::unpack_forward_comm(n, first, buf);
+  const int stage = comm_stage_now();
+  const size_t ps = comm_stride(stage);
+  Kokkos::deep_copy(Kokkos::subview(comm_view(stage), std::make_pair(ps * first, ps * (first + n))),
+                    HostUnmanaged<const double>(comm_host(stage) + ps * first, ps * n));
 }
 
-template <class DeviceType> double PairTLSPHKokkos<DeviceType>::memory_usage()
+template <class DeviceType, class Base>
+double PairTLSPHKokkosT<DeviceType, Base>::memory_usage()
 {
-  double bytes = PairTLSPH::memory_usage();
+  double bytes = Base::memory_usage();
   for (const dview *v : {&d_Q, &d_sumg, &d_F, &d_P, &d_fown, &d_pk, &d_psi, &d_ehg, &d_x0c,
                          &d_fhg, &d_fvisc, &d_bg, &d_bw})
     bytes += sizeof(double) * v->extent(0);
-  for (const iview *v : {&d_nbond, &d_start, &d_bj}) bytes += sizeof(int) * v->extent(0);
+  for (const iview *v : {&d_nbond, &d_nlead, &d_start, &d_bj, &d_bk}) bytes += sizeof(int) * v->extent(0);
   return bytes;
 }
 
 namespace LAMMPS_NS {
+template class PairTLSPHKokkosT<LMPDeviceType, PairTLSPH>;
+template class PairTLSPHKokkosT<LMPDeviceType, PairTLSPHDamage>;
 template class PairTLSPHKokkos<LMPDeviceType>;
 #ifdef LMP_KOKKOS_GPU
+template class PairTLSPHKokkosT<LMPHostType, PairTLSPH>;
+template class PairTLSPHKokkosT<LMPHostType, PairTLSPHDamage>;
 template class PairTLSPHKokkos<LMPHostType>;
 #endif
 }    // namespace LAMMPS_NS

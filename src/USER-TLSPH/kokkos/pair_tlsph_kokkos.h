@@ -36,15 +36,18 @@ PairStyle(tlsph/kk/host,PairTLSPHKokkos<LMPHostType>);
 
 namespace LAMMPS_NS {
 
-template <class DeviceType> class PairTLSPHKokkos : public PairTLSPH, public KokkosBase {
+/* The Kokkos machinery of the /kk styles, on top of the CPU style Base
+   (PairTLSPH for tlsph/kk, PairTLSPHDamage for tlsph/damage/kk): settings,
+   materials, the bond cache build and restarts are Base's. */
+template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, public KokkosBase {
  public:
   typedef DeviceType device_type;
   typedef ArrayTypes<DeviceType> AT;
   typedef Kokkos::View<double *, DeviceType> dview;
   typedef Kokkos::View<int *, DeviceType> iview;
+  typedef typename Base::Material Material;
 
-  PairTLSPHKokkos(class LAMMPS *);
-  ~PairTLSPHKokkos() override;
+  PairTLSPHKokkosT(class LAMMPS *);
   void compute(int, int) override;
   void init_style() override;
   void sync_host() override;
@@ -62,22 +65,77 @@ template <class DeviceType> class PairTLSPHKokkos : public PairTLSPH, public Kok
   template <int DIM, int ORDER> void dispatch_force(int hg, int visc, int vir, double *v);
 
  protected:
+  using Base::alpha;
+  using Base::any_orthotropic;
+  using Base::atom;
+  using Base::beta;
+  using Base::bond_start;
+  using Base::bonds;
+  using Base::cache_version;
+  using Base::comm;
+  using Base::comm_forward;
+  using Base::correction_size;
+  using Base::dim;
+  using Base::eflag_either;
+  using Base::ehg;
+  using Base::error;
+  using Base::ev_init;
+  using Base::execution_space;
+  using Base::datamask_read;
+  using Base::datamask_modify;
+  using Base::kokkosable;
+  using Base::gather_rows;
+  using Base::vflag_global;
+  using Base::F;
+  using Base::force;
+  using Base::gamma;
+  using Base::h;
+  using Base::hg_form;
+  using Base::kernel;
+  using Base::lean;
+  using Base::mat;
+  using Base::nbond;
+  using Base::nlead;
+  using Base::order;
+  using Base::P;
+  using Base::packed_size;
+  using Base::pairmat;
+  using Base::pk;
+  using Base::plane_stress;
+  using Base::psi;
+  using Base::Q;
+  using Base::sumg;
+  using Base::update;
+  using Base::virial;
+  using Base::x0c;
+
   class AtomKokkos *atomKK;
   // device copies: per particle (strides as in PairTLSPH), per bond, per type
-  int kk_nmax;                 // particles the per-particle views hold
+  int kk_nmax;    // particles the per-particle views hold
   dview d_Q, d_sumg, d_F, d_P, d_fown, d_pk, d_psi, d_ehg, d_x0c, d_fhg, d_fvisc;
-  iview d_nbond, d_start, d_bj;
+  iview d_nbond, d_nlead, d_start, d_bj, d_bk;
   dview d_bg, d_bw;
   Kokkos::View<Material *, DeviceType> d_mat;
   Kokkos::View<TLSPH::PairMaterial *, DeviceType> d_pm;
-  int host_current;            // 1: the host arrays F, psi, ehg hold this step's values
+  int uploaded_version;    // cache_version of the bond cache on the device
+  int host_current;        // 1: the host arrays F, psi, ehg hold this step's values
   bigint host_step;
-  // forward communication (device path)
-  typename AT::t_int_2d d_sendlist;
-  typename AT::t_xfloat_1d d_buf;
-  int first_recv;
   void grow_device();
-  void upload_bond_cache();
+  virtual void upload_bond_cache();
+  // pass (1), returns the first unstable particle or -1; tlsph/damage/kk breaks bonds in it
+  virtual int deformation_step();
+  // between passes (1) and (2): tlsph/damage/kk updates the damage and alpha_i
+  virtual void damage_step() {}
+  // what the forward communication moves (stage: tlsph/damage's comm_stage)
+  virtual int comm_stage_now() const { return 0; }
+  virtual dview &comm_view(int) { return d_pk; }
+  virtual double *comm_host(int) { return pk[0]; }
+  virtual int comm_stride(int) { return packed_size(); }
+};
+
+template <class DeviceType> class PairTLSPHKokkos : public PairTLSPHKokkosT<DeviceType, PairTLSPH> {
+ public:
+  PairTLSPHKokkos(class LAMMPS *lmp) : PairTLSPHKokkosT<DeviceType, PairTLSPH>(lmp) {}
 };
 
 }    // namespace LAMMPS_NS
