@@ -42,6 +42,7 @@ void ComputeTLSPHDamageAtom::compute_peratom()
     memory->create(values, nmax, 4, "tlsph/damage/atom:values");
     array_atom = values;
   }
+  pair->sync_host();    // tlsph/damage/kk: the damage to the host
   const int nlocal = atom->nlocal;
   int *mask = atom->mask;
   for (int i = 0; i < nlocal; i++) {

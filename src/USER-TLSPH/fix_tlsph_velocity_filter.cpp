@@ -63,6 +63,7 @@ void FixTLSPHVelocityFilter::end_of_step()
     nmax = atom->nmax;
     memory->create(vnew, nmax, 3, "tlsph/velocity/filter:vnew");
   }
+  pair->sync_host();    // tlsph/damage/kk: the damage to the host
   double **v = atom->v;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;

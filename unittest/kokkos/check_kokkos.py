@@ -16,6 +16,12 @@ not a silent fall-back to the CPU style.
   --case mpi       ../lammps/mpi/run_mpi.py with the /kk styles: -np 1, 2, 4 (and
                    -np 2 newton off) give the same final state (atoms migrate), and
                    for the laminate its restart test (files written and read by /kk).
+  --case damage    in.damage (a shortened crack-branching plate, bonds breaking,
+                   velocity filter): tlsph/damage/kk equals tlsph/damage with
+                   newton off to TOL (state and damage after 500 steps), has the same
+                   damage per particle as newton on and as /kk on 2 ranks (x, v to
+                   DAMAGE_XTOL), and a restart written mid-crack by /kk continues
+                   under the CPU style (and back) as the CPU-written one does, to TOL.
   --case restart   a restart written by /kk is read by the CPU styles, and one
                    written by the CPU styles is read by /kk; each continued run equals
                    the CPU-written, CPU-read one to TOL (the /kk step is bitwise the
@@ -35,6 +41,9 @@ from run_mpi import read_dump  # noqa: E402
 
 MATERIALS = os.path.join(HERE, "..", "..", "potentials", "tlsph_materials.tlsph")
 TOL = 1e-12
+# newton on (scatter) and 2 ranks sum the same terms in another order: the
+# round-off grows over the 500 steps of the breaking run (as in run_mpi.py)
+DAMAGE_XTOL = 1e-8
 KK = ["-k", "on", "-sf", "kk", "-var", "kk", "/kk"]
 
 
@@ -195,17 +204,98 @@ def case_restart(args):
     return problems
 
 
+def thermo_column(log, name):
+    """all values of a thermo column"""
+    vals, cols = [], None
+    for line in log.splitlines():
+        w = line.split()
+        if w[:1] == ["Step"]:
+            cols = w
+            continue
+        if cols and len(w) == len(cols):
+            try:
+                vals.append(float(w[cols.index(name)]))
+            except ValueError:
+                cols = None
+    return vals
+
+
+def case_damage(args):
+    for f in ("in.damage", "in.damage_fixes", "in.damage_final", "in.damage_restart"):
+        shutil.copy(os.path.join(HERE, f), args.workdir)
+    problems, finals = [], {}
+    runs = (("cpu_off", False, "off", 1), ("cpu_on", False, "on", 1), ("kk", True, "off", 1),
+            ("kk_np2", True, "off", 2))
+    for tag, kk, newton, np in runs:
+        log, prob = lmp_run(args, tag, "in.damage", ["-var", "newton", newton], kk, np)
+        problems += ["%s: %s" % (tag, p) for p in prob]
+        if prob:
+            continue
+        broken = thermo_column(log, "v_broken")
+        print("%-8s broken bonds %s (the pre-crack, then the growing crack)"
+              % (tag, " ".join("%d" % b for b in broken)))
+        if not broken or not broken[-1] > broken[0]:
+            problems.append("%s: no bond broke during the run: the test does not exercise "
+                            "breaking" % tag)
+        finals[tag] = read_dump(os.path.join(args.workdir, tag + ".final.dump"))
+    # restarts mid-crack, across the variants (all with newton off)
+    for writer in ("cpu", "kk"):
+        _, prob = lmp_run(args, "first_" + writer, "in.damage",
+                          ["-var", "newton", "off", "-var", "steps", "250", "-var", "restart",
+                           "half_" + writer], writer == "kk")
+        problems += ["first_%s: %s" % (writer, p) for p in prob]
+        if prob:
+            continue
+        for reader in ("cpu", "kk"):
+            if writer == "kk" and reader == "kk":
+                continue
+            t = "%s_to_%s" % (writer, reader)
+            _, prob = lmp_run(args, t, "in.damage_restart",
+                              ["-var", "newton", "off", "-var", "file", "half_" + writer,
+                               "-var", "steps", "250"], reader == "kk")
+            problems += ["%s: %s" % (t, p) for p in prob]
+            if not prob:
+                finals[t] = read_dump(os.path.join(args.workdir, t + ".final.dump"))
+
+    def check(a, b, tol_state, exact_damage=True):
+        if a not in finals or b not in finals:
+            return
+        cols, ra = finals[a]
+        _, rb = finals[b]
+        if sorted(ra) != sorted(rb):
+            problems.append("%s vs %s: different atom IDs" % (a, b))
+            return
+        for what, keys, tol in (("position", ("x", "y"), tol_state),
+                                ("velocity", ("vx", "vy"), tol_state),
+                                ("force", ("fx", "fy"), tol_state * 100),
+                                ("damage", ("c_dmg[1]", "c_dmg[3]"), 0.0 if exact_damage else TOL)):
+            diff, scale, rel = rel_diff(ra, rb, [cols.index(k) for k in keys])
+            ok = rel <= tol and math.isfinite(rel)
+            print("%-10s vs %-10s %-8s max|diff| %.3e of %.3e: %.2e %s"
+                  % (b, a, what, diff, scale, rel, "ok" if ok else "FAIL (limit %.0e)" % tol))
+            if not ok:
+                problems.append("%s vs %s: %s differs by %.3g" % (b, a, what, rel))
+
+    check("cpu_off", "kk", TOL)
+    check("cpu_on", "kk", DAMAGE_XTOL)
+    check("kk", "kk_np2", DAMAGE_XTOL)
+    check("cpu_to_cpu", "kk_to_cpu", TOL)
+    check("cpu_to_cpu", "cpu_to_kk", TOL)
+    return problems
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--lmp", required=True, help="the KOKKOS-enabled lmp (build-lammps-plugin.sh kokkos)")
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--workdir", required=True)
-    ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart"])
+    ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart", "damage"])
     ap.add_argument("--timeout", type=float, default=300)
     args = ap.parse_args()
     os.makedirs(args.workdir, exist_ok=True)
     shutil.copy(MATERIALS, args.workdir)
-    problems = {"forces": case_forces, "mpi": case_mpi, "restart": case_restart}[args.case](args)
+    problems = {"forces": case_forces, "mpi": case_mpi, "restart": case_restart,
+                "damage": case_damage}[args.case](args)
     if problems:
         print("FAILED:\n  " + "\n  ".join(problems))
         return 1

@@ -27,33 +27,19 @@
 
 using namespace LAMMPS_NS;
 
-namespace {
-template <class T>
-using HostUnmanaged = Kokkos::View<T *, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
-
-// host array h[0..n) -> device view d (grown, with slack, when too short)
-template <class View, class T> void upload(View &d, const T *h, size_t n, const char *name)
-{
-  if (d.extent(0) < n)
-    d = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name)), n + n / 8 + 16);
-  if (n == 0) return;
-  Kokkos::deep_copy(Kokkos::subview(d, std::make_pair(size_t(0), n)),
-                    HostUnmanaged<const T>(h, n));
-}
-
-// device view d[first .. first + n) -> host array h[0..n)
-template <class View, class T> void download(T *h, const View &d, size_t first, size_t n)
-{
-  if (n == 0) return;
-  Kokkos::deep_copy(HostUnmanaged<T>(h, n), Kokkos::subview(d, std::make_pair(first, first + n)));
-}
-}    // namespace
+using TLSPHKK::download;
+using TLSPHKK::HostUnmanaged;
+using TLSPHKK::upload;
 
 /* ---------------------------------------------------------------------- */
 
 template <class DeviceType, class Base>
 PairTLSPHKokkosT<DeviceType, Base>::PairTLSPHKokkosT(LAMMPS *lmp) : Base(lmp)
 {
+  // a restart file of an older build, or an explicit /kk name without -k on
+  if (lmp->kokkos == nullptr)
+    error->all(FLERR, "pair_style tlsph/kk and tlsph/damage/kk need the KOKKOS package enabled "
+                      "(-k on); without it use pair_style tlsph or tlsph/damage");
   kokkosable = 1;
   atomKK = (AtomKokkos *) atom;
   execution_space = ExecutionSpaceFromDevice<DeviceType>::space;
@@ -85,9 +71,13 @@ void PairTLSPHKokkosT<DeviceType, Base>::init_style()
   // style's name (as newer LAMMPS versions do with every suffix), so that a
   // file written with -k on is read by pair_style tlsph, and by tlsph/kk with
   // -sf kk (atom_style peri/kk does the same for the atom style)
-  if (force->pair == this && force->pair_style && utils::strmatch(force->pair_style, "^tlsph/kk")) {
-    delete[] force->pair_style;
-    force->pair_style = utils::strdup("tlsph");
+  if (force->pair == this && force->pair_style) {
+    std::string name = force->pair_style;
+    const auto kk = name.find("/kk");
+    if (kk != std::string::npos) {
+      delete[] force->pair_style;
+      force->pair_style = utils::strdup(name.substr(0, kk));
+    }
   }
 
   // materials, per type, to the device (pair_coeff cannot change them during a run)

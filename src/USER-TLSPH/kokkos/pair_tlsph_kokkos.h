@@ -34,6 +34,32 @@ PairStyle(tlsph/kk/host,PairTLSPHKokkos<LMPHostType>);
 #include "kokkos_type.h"
 #include "pair_tlsph.h"
 
+#include <string>
+#include <utility>
+
+// host <-> device copies of the /kk styles
+namespace TLSPHKK {
+template <class T>
+using HostUnmanaged = Kokkos::View<T *, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
+
+// host array h[0..n) -> device view d (grown, with slack, when too short)
+template <class View, class T> inline void upload(View &d, const T *h, size_t n, const char *name)
+{
+  if (d.extent(0) < n)
+    d = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name)), n + n / 8 + 16);
+  if (n == 0) return;
+  Kokkos::deep_copy(Kokkos::subview(d, std::make_pair(size_t(0), n)),
+                    HostUnmanaged<const T>(h, n));
+}
+
+// device view d[first .. first + n) -> host array h[0..n)
+template <class View, class T> inline void download(T *h, const View &d, size_t first, size_t n)
+{
+  if (n == 0) return;
+  Kokkos::deep_copy(HostUnmanaged<T>(h, n), Kokkos::subview(d, std::make_pair(first, first + n)));
+}
+}    // namespace TLSPHKK
+
 namespace LAMMPS_NS {
 
 /* The Kokkos machinery of the /kk styles, on top of the CPU style Base
