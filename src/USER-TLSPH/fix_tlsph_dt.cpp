@@ -66,7 +66,7 @@ void FixTLSPHDt::end_of_step()
   update_dt();
 }
 
-void FixTLSPHDt::update_dt()
+double FixTLSPHDt::local_max_speed()
 {
   double **v = atom->v;
   int *type = atom->type;
@@ -78,6 +78,12 @@ void FixTLSPHDt::update_dt()
     const double vel = sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
     cmax = MAX(cmax, pair->material(type[i]).c0 + vel);
   }
+  return cmax;
+}
+
+void FixTLSPHDt::update_dt()
+{
+  const double cmax = local_max_speed();
   double call;
   MPI_Allreduce(&cmax, &call, 1, MPI_DOUBLE, MPI_MAX, world);
   if (call <= 0.0) return;

@@ -28,10 +28,12 @@ class FixTLSPHDt : public Fix {
   void end_of_step() override;
   double compute_scalar() override;
 
- private:
+ protected:
   double courant;
   class PairTLSPH *pair;
   void update_dt();
+  // max over the local particles of the group of c0 + |v| (fix tlsph/dt/kk: on the device)
+  virtual double local_max_speed();
 };
 
 }    // namespace LAMMPS_NS

@@ -33,7 +33,7 @@ class FixTLSPHVelocityFilter : public Fix {
   void unpack_forward_comm(int, int, double *) override;
   double compute_scalar() override;
 
- private:
+ protected:
   double phi_c, eps;
   class PairTLSPHDamage *pair;
   int nmax;

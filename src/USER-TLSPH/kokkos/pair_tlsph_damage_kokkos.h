@@ -40,6 +40,20 @@ class PairTLSPHDamageKokkos : public PairTLSPHKokkosT<DeviceType, PairTLSPHDamag
   void sync_host() override;
   double memory_usage() override;
 
+  // what fix tlsph/velocity/filter/kk reads on the device (valid after a
+  // force call): the intact bonds of local particle i are bj[start[i] ..
+  // start[i] + nbond[i]), X_ij = x0c_j - x0c_i (3 per particle), phi its damage
+  struct DeviceBonds {
+    const int *start, *nbond, *bj;
+    const double *x0c, *phi;
+    TLSPH::CubicSpline kernel;
+  };
+  DeviceBonds device_bonds() const
+  {
+    return DeviceBonds{this->d_start.data(), this->d_nbond.data(), this->d_bj.data(),
+                       this->d_x0c.data(), d_phi.data(), this->kernel};
+  }
+
   // the kernels (public: device lambdas may not live in private members)
   template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS> int break_kernel();
   template <int DIM, int ORDER, int LAWS> int dispatch_break();
