@@ -11,16 +11,17 @@ not a silent fall-back to the CPU style.
                    2D/3D, isotropic/orthotropic plies, thesis/conservative
                    hourglass, linear/quadratic gradient. The forces, the stress
                    compute, the energies and the pressure of tlsph/kk equal those
-                   of tlsph (newton on: the scatter form; newton off: the gather
-                   form that /kk uses) to TOL relative to the largest value.
+                   of tlsph with the same newton setting (on: the scatter form,
+                   off: the gather form), and the gather form's the scatter
+                   form's, to TOL relative to the largest value.
   --case mpi       ../lammps/mpi/run_mpi.py with the /kk styles: -np 1, 2, 4 (and
                    -np 2 newton off) give the same final state (atoms migrate), and
                    for the laminate its restart test (files written and read by /kk).
   --case damage    in.damage (a shortened crack-branching plate, bonds breaking,
                    velocity filter): tlsph/damage/kk equals tlsph/damage with
-                   newton off to TOL (state and damage after 500 steps), has the same
-                   damage per particle as newton on and as /kk on 2 ranks (x, v to
-                   DAMAGE_XTOL), and a restart written mid-crack by /kk continues
+                   the same newton setting to TOL (state and damage after 500 steps),
+                   has the same damage per particle with the other setting and on
+                   2 ranks (x, v to DAMAGE_XTOL), and a restart written mid-crack by /kk continues
                    under the CPU style (and back) as the CPU-written one does, to TOL.
   --case restart   a restart written by /kk is read by the CPU styles, and one
                    written by the CPU styles is read by /kk; each continued run equals
@@ -98,7 +99,7 @@ def case_forces(args):
         extra = ["-var", "dim", dim, "-var", "law", law, "-var", "hg", hg, "-var", "grad", grad]
         runs = {}
         for tag, kk, newton in (("cpu_on", False, "on"), ("cpu_off", False, "off"),
-                                ("kk", True, "on")):
+                                ("kk_on", True, "on"), ("kk_off", True, "off")):
             t = "%s_%s" % (name, tag)
             log, prob = lmp_run(args, t, inp, extra + ["-var", "newton", newton], kk)
             problems += ["%s: %s" % (t, p) for p in prob]
@@ -106,24 +107,26 @@ def case_forces(args):
                 break
             cols, rows = read_dump(os.path.join(args.workdir, t + ".dump"))
             runs[tag] = (thermo(log), cols, rows)
-        if len(runs) < 3:
+        if len(runs) < 4:
             continue
-        _, cols, kk_rows = runs["kk"]
+        cols = runs["kk_on"][1]
         force = [cols.index(c) for c in ("fx", "fy", "fz")]
         stress = [cols.index(c) for c in ("c_sig[1]", "c_sig[2]", "c_sig[4]")]
-        for ref in ("cpu_on", "cpu_off"):
+        # the same form (newton on: scatter, off: gather) and the other one
+        for kk, ref in (("kk_on", "cpu_on"), ("kk_off", "cpu_off"), ("kk_on", "cpu_off")):
             th, _, rows = runs[ref]
+            kk_rows = runs[kk][2]
             if sorted(rows) != sorted(kk_rows):
                 problems.append("%s: different atom IDs" % name)
                 continue
             for what, keys in (("force", force), ("stress", stress)):
                 diff, scale, rel = rel_diff(rows, kk_rows, keys)
                 ok = rel <= TOL and math.isfinite(rel)
-                print("%-34s kk vs %-7s %-6s max|diff| %.3e of %.3e: %.2e %s"
-                      % (name, ref, what, diff, scale, rel, "ok" if ok else "FAIL"))
+                print("%-34s %-6s vs %-7s %-6s max|diff| %.3e of %.3e: %.2e %s"
+                      % (name, kk, ref, what, diff, scale, rel, "ok" if ok else "FAIL"))
                 if not ok:
                     problems.append("%s: %s vs %s differs by %.3g" % (name, what, ref, rel))
-            kth = runs["kk"][0]
+            kth = runs[kk][0]
             pscale = max(abs(th[k]) for k in ("Pxx", "Pyy", "Pxy"))
             worst = 0.0
             for k in ("PotEng", "c_e[1]", "c_e[2]", "Press", "Pxx", "Pyy", "Pxy"):
@@ -132,8 +135,8 @@ def case_forces(args):
                 worst = max(worst, rel) if math.isfinite(rel) else math.inf
                 if not (rel <= TOL):
                     problems.append("%s: %s vs %s differs by %.3g" % (name, k, ref, rel))
-            print("%-34s kk vs %-7s energies, pressure: largest relative difference %.2e %s"
-                  % (name, ref, worst, "ok" if worst <= TOL else "FAIL"))
+            print("%-34s %-6s vs %-7s energies, pressure: largest relative difference %.2e %s"
+                  % (name, kk, ref, worst, "ok" if worst <= TOL else "FAIL"))
     return problems
 
 
@@ -225,7 +228,7 @@ def case_damage(args):
         shutil.copy(os.path.join(HERE, f), args.workdir)
     problems, finals = [], {}
     runs = (("cpu_off", False, "off", 1), ("cpu_on", False, "on", 1), ("kk", True, "off", 1),
-            ("kk_np2", True, "off", 2))
+            ("kk_on", True, "on", 1), ("kk_np2", True, "off", 2))
     for tag, kk, newton, np in runs:
         log, prob = lmp_run(args, tag, "in.damage", ["-var", "newton", newton], kk, np)
         problems += ["%s: %s" % (tag, p) for p in prob]
@@ -277,6 +280,7 @@ def case_damage(args):
                 problems.append("%s vs %s: %s differs by %.3g" % (b, a, what, rel))
 
     check("cpu_off", "kk", TOL)
+    check("cpu_on", "kk_on", TOL)
     check("cpu_on", "kk", DAMAGE_XTOL)
     check("kk", "kk_np2", DAMAGE_XTOL)
     check("cpu_to_cpu", "kk_to_cpu", TOL)

@@ -95,6 +95,7 @@ int PairTLSPHDamageKokkos<DeviceType>::break_kernel()
   const TLSPH::CubicSpline kern = this->kernel;
   const bool need_K = this->viscosity_active(), cons = (this->hg_form == 2 && this->gamma != 0.0);
   const double g = this->gamma, alpha0 = this->alpha;
+  const bool with_R = this->gather_rows;
   const auto count = d_nbroken;
   const auto broken_i = d_broken_i, broken_m = d_broken_m;
   Kokkos::deep_copy(count, 0);
@@ -159,7 +160,7 @@ int PairTLSPHDamageKokkos<DeviceType>::break_kernel()
         double J;
         psi[i] = PairTLSPH::stress_row<DIM, ORDER, LAWS>(
             mt[ti], pstress, Fi, P + 9 * i, need_K, cons, x, i, b, n, coeff, Vi, Q + qs * i,
-            alpha0, sumg + 3 * i, true, pk + (long) ps * i, fown + 3 * i, ehg + i, &J);
+            alpha0, sumg + 3 * i, with_R, pk + (long) ps * i, fown + 3 * i, ehg + i, &J);
         if (!(J > 0.0) || !std::isfinite(psi[i])) first = (i < first) ? i : first;
       },
       Kokkos::Min<int>(bad));

@@ -21,6 +21,8 @@
 #include "update.h"
 #include "utils.h"
 
+#include <Kokkos_ScatterView.hpp>
+
 #include <cmath>
 #include <string>
 #include <utility>
@@ -61,10 +63,11 @@ void PairTLSPHKokkosT<DeviceType, Base>::init_style()
   if (!dynamic_cast<AtomVecPeriKokkos *>(atom->avec))
     error->all(FLERR, "pair tlsph/kk requires atom_style peri/kk (run with -k on, or use "
                       "pair_style tlsph without /kk)");
-  // the kernels use the gather form of the stress term: the packed rows
-  // carry R = V P Q (pair_tlsph.h), whatever newton_pair is
-  gather_rows = 1;
-  comm_forward = packed_size();
+  // as tlsph: newton_pair off, the gather form (the packed rows carry
+  // R = V P Q, pair_tlsph.h; no atomics: the GPU's form), on: Newton's third
+  // law, the partners' shares scattered through Kokkos ScatterViews (plain
+  // stores on Serial, per-thread copies on OpenMP, atomics on a GPU); the
+  // base class has set gather_rows and comm_forward accordingly
   kk_nmax = 0;    // row sizes may have changed: reallocate the device views
 
   // restart files name the pair style by force->pair_style: give it the CPU
@@ -170,6 +173,7 @@ int PairTLSPHKokkosT<DeviceType, Base>::deformation_kernel()
   const int qs = correction_size(), ps = packed_size(), pstress = plane_stress, ord = order;
   const TLSPH::CubicSpline kern = kernel;
   const bool need_K = this->viscosity_active(), cons = (hg_form == 2 && gamma != 0.0);
+  const bool with_R = gather_rows;
   const double g = gamma, alpha0 = alpha;
 
   int bad = nlocal;
@@ -186,7 +190,7 @@ int PairTLSPHKokkosT<DeviceType, Base>::deformation_kernel()
         double J;
         psi[i] = PairTLSPH::stress_row<DIM, ORDER, LAWS>(
             mt[type(i)], pstress, Fi, P + 9 * i, need_K, cons, x, i, b, nb[i], coeff, Vi,
-            Q + qs * i, alpha0, sumg + 3 * i, true, pk + (long) ps * i, fown + 3 * i, ehg + i,
+            Q + qs * i, alpha0, sumg + 3 * i, with_R, pk + (long) ps * i, fown + 3 * i, ehg + i,
             &J);
         if (!(J > 0.0) || !std::isfinite(psi[i])) first = (i < first) ? i : first;
       },
@@ -246,24 +250,134 @@ void PairTLSPHKokkosT<DeviceType, Base>::force_kernel(double *vir)
 }
 
 template <class DeviceType, class Base>
+template <int DIM, int ORDER, int HG, int VISC, int VIRIAL>
+void PairTLSPHKokkosT<DeviceType, Base>::force_pass(double *vir)
+{
+  if (gather_rows) force_kernel<DIM, ORDER, HG, VISC, VIRIAL>(vir);
+  else force_kernel_scatter<DIM, ORDER, HG, VISC, VIRIAL>(vir);
+}
+
+namespace {
+// the scatter form's writes to other particles (pair_tlsph.cpp: ScatterForce,
+// PairForces), through Kokkos ScatterView accessors
+template <class FA> struct KKScatterForce {
+  const FA &f;
+  KOKKOS_INLINE_FUNCTION void operator()(int j, const double *t) const
+  {
+    f(j, 0) -= t[0];
+    f(j, 1) -= t[1];
+    f(j, 2) -= t[2];
+  }
+};
+template <class FA, class TA> struct KKPairForces {
+  static constexpr bool enabled = true;
+  int nlead;
+  int nlocal;
+  const FA &f;
+  const TA &fhg, &fvisc;
+  bool tally_hg;    // false with the conservative hourglass form (it has an energy)
+  KOKKOS_INLINE_FUNCTION void operator()(int j, const double *pv, const double *ph) const
+  {
+    for (int d = 0; d < 3; d++) {
+      f(j, d) -= pv[d] + ph[d];
+      fvisc(3 * j + d) -= pv[d];
+      if (tally_hg) fhg(3 * j + d) -= ph[d];
+    }
+  }
+};
+}    // namespace
+
+/* ----------------------------------------------------------------------
+   pass (3), scatter form (newton_pair on): as PairTLSPH::compute_forces
+   with SCATTER, Newton's third law for the stress term and, for the leading
+   bonds, the viscous and hourglass pair forces; ghost forces are summed by
+   LAMMPS's reverse communication
+------------------------------------------------------------------------- */
+
+template <class DeviceType, class Base>
+template <int DIM, int ORDER, int HG, int VISC, int VIRIAL>
+void PairTLSPHKokkosT<DeviceType, Base>::force_kernel_scatter(double *vir)
+{
+  using TLSPH::StridedRows;
+  namespace KE = Kokkos::Experimental;
+  const int nlocal = atom->nlocal;
+  auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
+  const StridedRows x{atomKK->k_x.template view<DeviceType>().data(), 3};
+  const StridedRows v{atomKK->k_v.template view<DeviceType>().data(), 3};
+  auto f = atomKK->k_f.template view<DeviceType>();
+  const TLSPH::TypeArray type{atomKK->k_type.template view<DeviceType>().data()};
+  const double *vfrac = avec->k_vfrac.template view<DeviceType>().data();
+  const int *start = d_start.data(), *nb = d_nbond.data(), *nl = d_nlead.data(),
+            *bj = d_bj.data();
+  const double *bg = d_bg.data(), *bw = d_bw.data(), *x0c = d_x0c.data();
+  const double *P = d_P.data(), *fown = d_fown.data();
+  const StridedRows pkr{d_pk.data(), packed_size()};
+  const TLSPH::PairMaterial *pm = d_pm.data();
+  const TLSPH::CubicSpline kern = kernel;
+  const int ord = order;
+  const double hh = h, bb = beta, gg = gamma;
+  // the tallies are sums (partners add their share): zero them first
+  auto fhg = Kokkos::subview(d_fhg, std::make_pair(0, 3 * nlocal));
+  auto fvisc = Kokkos::subview(d_fvisc, std::make_pair(0, 3 * nlocal));
+  Kokkos::deep_copy(fhg, 0.0);
+  Kokkos::deep_copy(fvisc, 0.0);
+  auto sf = KE::create_scatter_view(f);
+  auto shg = KE::create_scatter_view(fhg);
+  auto svisc = KE::create_scatter_view(fvisc);
+
+  EV_FLOAT ev;
+  Kokkos::parallel_reduce(
+      "tlsph/kk:forces_scatter", Kokkos::RangePolicy<DeviceType>(0, nlocal),
+      KOKKOS_LAMBDA(const int i, EV_FLOAT &acc) {
+        auto af = sf.access();
+        auto ahg = shg.access();
+        auto avisc = svisc.access();
+        const int s = start[i];
+        const double Vi = vfrac[i];
+        const TLSPH::LeanBonds<DIM, StridedRows> b{
+            bj + s, bg + DIM * s, bw + 2 * s, StridedRows{x0c, 3}, x0c + 3 * i, kern, Vi, ord};
+        double fs[3] = {fown[3 * i], fown[3 * i + 1], fown[3 * i + 2]};
+        double fv[3] = {0.0, 0.0, 0.0}, fh[3] = {0.0, 0.0, 0.0};
+        const TLSPH::VirialTally tally{acc.v};
+        const KKScatterForce<decltype(af)> scatter{af};
+        const KKPairForces<decltype(af), decltype(ahg)> pairs{nl[i], nlocal, af, ahg, avisc,
+                                                              HG != 2};
+        TLSPH::particle_force_bonds<DIM, ORDER, HG, VISC, VIRIAL, 1>(
+            i, Vi, b, nb[i], x, v, pkr, type, pm, hh, bb, gg, P + 9 * i, fs, fv, fh, tally,
+            scatter, pairs);
+        for (int d = 0; d < DIM; d++) af(i, d) += fs[d] + fv[d] + fh[d];
+        for (int d = 0; d < 3; d++) {
+          if (HG != 2) ahg(3 * i + d) += fh[d];
+          avisc(3 * i + d) += fv[d];
+        }
+      },
+      ev);
+  KE::contribute(f, sf);
+  KE::contribute(fhg, shg);
+  KE::contribute(fvisc, svisc);
+  if (VIRIAL)
+    for (int k = 0; k < 6; k++) vir[k] += ev.v[k];
+}
+
+template <class DeviceType, class Base>
 template <int DIM, int ORDER>
 void PairTLSPHKokkosT<DeviceType, Base>::dispatch_force(int hg, int visc, int vir, double *vr)
 {
   const int key = hg + 3 * visc + 6 * vir;
   switch (key) {
     // clang-format off
-    case 0:  force_kernel<DIM, ORDER, 0, 0, 0>(vr); break;
-    case 1:  force_kernel<DIM, ORDER, 1, 0, 0>(vr); break;
-    case 2:  force_kernel<DIM, ORDER, 2, 0, 0>(vr); break;
-    case 3:  force_kernel<DIM, ORDER, 0, 1, 0>(vr); break;
-    case 4:  force_kernel<DIM, ORDER, 1, 1, 0>(vr); break;
-    case 5:  force_kernel<DIM, ORDER, 2, 1, 0>(vr); break;
-    case 6:  force_kernel<DIM, ORDER, 0, 0, 1>(vr); break;
-    case 7:  force_kernel<DIM, ORDER, 1, 0, 1>(vr); break;
-    case 8:  force_kernel<DIM, ORDER, 2, 0, 1>(vr); break;
-    case 9:  force_kernel<DIM, ORDER, 0, 1, 1>(vr); break;
-    case 10: force_kernel<DIM, ORDER, 1, 1, 1>(vr); break;
-    default: force_kernel<DIM, ORDER, 2, 1, 1>(vr); break;
+    case 0:  force_pass<DIM, ORDER, 0, 0, 0>(vr); break;
+    case 1:  force_pass<DIM, ORDER, 1, 0, 0>(vr); break;
+    case 2:  force_pass<DIM, ORDER, 2, 0, 0>(vr); break;
+    case 3:  force_pass<DIM, ORDER, 0, 1, 0>(vr); break;
+    case 4:  force_pass<DIM, ORDER, 1, 1, 0>(vr); break;
+    case 5:  force_pass<DIM, ORDER, 2, 1, 0>(vr); break;
+    case 6:  force_pass<DIM, ORDER, 0, 0, 1>(vr); break;
+    case 7:  force_pass<DIM, ORDER, 1, 0, 1>(vr); break;
+    case 8:  force_pass<DIM, ORDER, 2, 0, 1>(vr); break;
+    case 9:  force_pass<DIM, ORDER, 0, 1, 1>(vr); break;
+    case 10: force_pass<DIM, ORDER, 1, 1, 1>(vr); break;
+    default: force_pass<DIM, ORDER, 2, 1, 1>(vr); break;
       // clang-format on
   }
 }

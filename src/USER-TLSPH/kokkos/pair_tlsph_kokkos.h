@@ -88,6 +88,8 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   // the kernels (public: device lambdas may not live in private members)
   template <int DIM, int ORDER, int LAWS> int deformation_kernel();
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void force_kernel(double *vir);
+  template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void force_kernel_scatter(double *vir);
+  template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void force_pass(double *vir);
   template <int DIM, int ORDER> void dispatch_force(int hg, int visc, int vir, double *v);
 
  protected:
