@@ -59,10 +59,10 @@ class PairTLSPHDamageKokkos : public PairTLSPHKokkosT<DeviceType, PairTLSPHDamag
   template <int DIM, int ORDER, int LAWS> int dispatch_break();
   template <int DIM> void smooth_kernel();
   template <int DIM> void replay_breaks(int n);
+  void damage_step() override;    // public: it holds device lambdas
 
  protected:
   int deformation_step() override;
-  void damage_step() override;
   void upload_bond_cache() override;
   int comm_stage_now() const override { return this->comm_stage == 1 ? 1 : 0; }
   dview &comm_view(int stage) override { return stage == 1 ? d_phi : this->d_pk; }
