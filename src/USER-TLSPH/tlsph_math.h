@@ -12,7 +12,9 @@
 
 #include <cmath>
 
-#if defined(TLSPH_KOKKOS) && defined(KOKKOS_INLINE_FUNCTION)
+#if defined(TLSPH_KOKKOS)
+// the /kk styles: host and device functions (whatever was included before)
+#include <Kokkos_Macros.hpp>
 #define TLSPH_INLINE KOKKOS_INLINE_FUNCTION
 #define TLSPH_FORCE_INLINE KOKKOS_FORCEINLINE_FUNCTION
 #else

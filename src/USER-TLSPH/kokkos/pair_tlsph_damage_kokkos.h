@@ -23,8 +23,8 @@ PairStyle(tlsph/damage/kk/host,PairTLSPHDamageKokkos<LMPHostType>);
 #ifndef LMP_PAIR_TLSPH_DAMAGE_KOKKOS_H
 #define LMP_PAIR_TLSPH_DAMAGE_KOKKOS_H
 
+#include "pair_tlsph_kokkos.h"    // first: it defines TLSPH_KOKKOS
 #include "pair_tlsph_damage.h"
-#include "pair_tlsph_kokkos.h"
 
 namespace LAMMPS_NS {
 
