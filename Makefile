@@ -21,7 +21,7 @@ export LMP_TLSPH = $(BUILD_ABS)/lmp_tlsph
 export TLSPH_PLUGIN = $(BUILD_ABS)/tlsphplugin.so
 
 .PHONY: all setup configure build run test test-sanitize fuzz bench bench-instructions bench-compare \
-        bench-pareto bench-roofline kokkos clean
+        bench-pareto bench-roofline bench-kokkos kokkos kokkos-cuda clean
 
 all: build
 
@@ -70,6 +70,20 @@ fuzz: setup
 # on 2 shared cores). Our styles: `plugin load build/tlsphplugin.so`, without -k
 kokkos:
 	@TLSPH_JOBS=$(JOBS) bash scripts/build-lammps-plugin.sh kokkos
+
+# the same with the Kokkos CUDA backend for NVIDIA GPUs: native sm_90 (Hopper,
+# + compute_90 PTX) and sm_80 (Ampere) code, CUDA toolkit in /usr/local/cuda
+# (TLSPH_CUDA_HOME), Kokkos 3.4.01 from Debian's trilinos source (downloaded
+# once, 166 MB) patched for CUDA 13; our package compiled in (rebuilt
+# incrementally on every call); prints its lmp. It only compiles without a GPU
+# (doc/kokkos-cuda.md; about 50 min the first time on 2 shared cores)
+kokkos-cuda:
+	@TLSPH_JOBS=$(JOBS) bash scripts/build-lammps-plugin.sh kokkos-cuda
+
+# tlsph/kk against tlsph on the host, side by side in the make-kokkos LAMMPS
+# (bench/kokkos.md; a few minutes)
+bench-kokkos:
+	@bash bench/kokkos.sh
 
 bench: build
 	@if [ -f bench/run.sh ]; then bash bench/run.sh; \

@@ -10,7 +10,8 @@
 #         (LAMMPS_MACHINE=plugin: a library name of its own, so that it can
 #          never be mixed up with Debian's liblammps.so.0)
 #
-# Nothing is done when bin/lmp exists. The last line on stdout is the path of
+# Nothing is done when bin/lmp exists (kokkos, kokkos-cuda: rebuilt
+# incrementally on every call, below). The last line on stdout is the path of
 # bin/lmp. Uses `ninja -j${TLSPH_JOBS:-2}`.
 #
 # `build-lammps-plugin.sh bench` builds the side-by-side benchmark's LAMMPS
@@ -39,6 +40,28 @@
 # that target and add Kokkos_INCLUDE_DIRS (/usr/include/trilinos, from the same
 # config file), on a hard-linked copy of the tree, as for bench.
 #
+# `build-lammps-plugin.sh kokkos-cuda` builds a LAMMPS with KOKKOS for NVIDIA
+# GPUs (Kokkos CUDA backend, Serial on the host), plus PLUGIN and PERI and our
+# package compiled in (as for kokkos), in lammps-kokkos-cuda-<source version>/
+# (LAMMPS_MACHINE=kokkos_cuda: library liblammps_kokkos_cuda.so.0, beside it
+# Kokkos's libkokkoscore.so.3.4 and libkokkoscontainers.so.3.4);
+# doc/kokkos-cuda.md. It only compiles here: running needs an NVIDIA GPU and
+# driver. Needs a CUDA toolkit in ${TLSPH_CUDA_HOME:-/usr/local/cuda} (nvcc
+# need not be on PATH; written for CUDA 13). Debian's Kokkos has no CUDA, so
+# the Kokkos 3.4.01 source comes from Debian's `trilinos` source package
+# (${TLSPH_TRILINOS_VERSION:-13.2.0-4}, packages/kokkos; downloaded once with
+# `apt-get source --download-only` through the private deb-src list of
+# setup.sh into ${TLSPH_CACHE}/trilinos-<version>/, 166 MB) and is built by
+# LAMMPS as its bundled lib/kokkos (no EXTERNAL_KOKKOS), with nvcc_wrapper as
+# the C++ compiler. KOKKOS_CUDA_PATCH below adapts Kokkos 3.4.01 to CUDA 13
+# and adds a Hopper arch (HOPPER90) whose code is, through the list
+# TLSPH_CUDA_GENCODE, native sm_90 (+ compute_90 PTX) plus sm_80 in one fat
+# binary (Kokkos 3.4's CMake takes one GPU arch); FATBIN_CHECK checks that
+# the library holds that code. The prepared source/ is kept and lib/kokkos
+# updated file by file, so that a failed build resumes where it stopped
+# (nvcc_wrapper compiles every LAMMPS file: about 45 min on 2 shared cores).
+# The nvcc version is recorded (nvcc-version.txt): another nvcc is refused.
+#
 # Why BUILD_SHARED_LIBS=on: in this LAMMPS version (20220106) the CMake build
 # defines LMP_PLUGIN (without which `plugin load` is a no-op that only prints
 # a warning) only for a shared-library build; the plugin's undefined LAMMPS
@@ -59,8 +82,30 @@ case "$VARIANT" in
   bench)  EXTRA_PKGS=(-D PKG_MACHDYN=on -D DOWNLOAD_EIGEN3=off) ;;
   kokkos) EXTRA_PKGS=(-D PKG_KOKKOS=on -D EXTERNAL_KOKKOS=on -D Kokkos_ENABLE_SERIAL=on
                       -D Kokkos_ENABLE_OPENMP=off -D Kokkos_ENABLE_CUDA=off) ;;
-  *) die "unknown variant '$VARIANT' (allowed: plugin, bench, kokkos)" ;;
+  # kokkos-cuda: bundled Kokkos (lib/kokkos, from trilinos), CUDA + Serial;
+  # HOPPER90 and TLSPH_CUDA_GENCODE exist through KOKKOS_CUDA_PATCH below
+  # (CMAKE_CXX_COMPILER, nvcc_wrapper, is added once the tree is known)
+  kokkos-cuda)
+          EXTRA_PKGS=(-D PKG_KOKKOS=on -D EXTERNAL_KOKKOS=off -D DOWNLOAD_KOKKOS=off
+                      -D Kokkos_ENABLE_SERIAL=on -D Kokkos_ENABLE_OPENMP=off
+                      -D Kokkos_ENABLE_CUDA=on -D Kokkos_ENABLE_CUDA_UVM=off
+                      -D Kokkos_ARCH_HOPPER90=on
+                      -D "TLSPH_CUDA_GENCODE=arch=compute_90,code=sm_90;arch=compute_90,code=compute_90;arch=compute_80,code=sm_80") ;;
+  *) die "unknown variant '$VARIANT' (allowed: plugin, bench, kokkos, kokkos-cuda)" ;;
 esac
+# LAMMPS_MACHINE: the variant's name, with '_' for '-' (lmp_kokkos_cuda,
+# liblammps_kokkos_cuda.so.0); the same as the variant for the others
+MACHINE=${VARIANT//-/_}
+
+# kokkos-cuda: the CUDA toolkit (nvcc need not be on PATH)
+if [ "$VARIANT" = kokkos-cuda ]; then
+  CUDA_HOME=${TLSPH_CUDA_HOME:-/usr/local/cuda}
+  [ -x "$CUDA_HOME/bin/nvcc" ] ||
+    die "kokkos-cuda needs a CUDA toolkit: no $CUDA_HOME/bin/nvcc (set TLSPH_CUDA_HOME)"
+  CUDA_HOME=$(cd "$CUDA_HOME" && pwd -P)
+  NVCC_VERSION=$("$CUDA_HOME/bin/nvcc" --version | sed -n 's/.*release \([0-9.]*\), V\([0-9.]*\).*/\2/p')
+  [ -n "$NVCC_VERSION" ] || die "cannot read the version of $CUDA_HOME/bin/nvcc"
+fi
 
 # kokkos: Debian's Kokkos, built and at run time (libtrilinos_kokkoscore.so.13.2)
 if [ "$VARIANT" = kokkos ]; then
@@ -89,12 +134,59 @@ CACHE=$(cd "$CACHE" && pwd -P)
 PREFIX="$CACHE/lammps-$VARIANT-$SRC_VER"
 LMP="$PREFIX/bin/lmp"
 
+# kokkos-cuda: a build (or a partial one) is never continued with another nvcc
+if [ "$VARIANT" = kokkos-cuda ] && [ -f "$PREFIX/nvcc-version.txt" ] &&
+   [ "$(cat "$PREFIX/nvcc-version.txt")" != "$NVCC_VERSION" ]; then
+  die "$PREFIX was built with nvcc $(cat "$PREFIX/nvcc-version.txt"), $CUDA_HOME/bin/nvcc is $NVCC_VERSION: remove $PREFIX to rebuild"
+fi
+
+# kokkos-cuda: the Kokkos source, from Debian's trilinos source package,
+# downloaded once (apt-get source --download-only, whose files apt checks
+# against the signed index) into $CACHE/trilinos-<version>/, through the
+# private deb-src list of setup.sh ($CACHE/apt; `setup.sh --check-source`
+# writes and updates it when it has no such trilinos)
+if [ "$VARIANT" = kokkos-cuda ]; then
+  TRILINOS_VER=${TLSPH_TRILINOS_VERSION:-13.2.0-4}
+  TRILINOS_DIR="$CACHE/trilinos-$TRILINOS_VER"
+  trilinos_orig() { ls "$TRILINOS_DIR"/trilinos_*.orig.tar.* 2>/dev/null | head -n1 || true; }
+  if [ -z "$(trilinos_orig)" ]; then
+    exec 8>"$CACHE/.trilinos-source.lock"      # one download at a time
+    flock 8
+  fi
+  if [ -z "$(trilinos_orig)" ]; then
+    APT_PRIV="$CACHE/apt"
+    APT_OPTS=(-o "Dir::Etc::SourceList=$APT_PRIV/sources.list"
+              -o "Dir::Etc::SourceParts=$APT_PRIV/sources.list.d"
+              -o "Dir::State::Lists=$APT_PRIV/lists"
+              -o "Dir::Cache::Archives=$APT_PRIV/archives"
+              -o "Dir::Cache::pkgcache=" -o "Dir::Cache::srcpkgcache=")
+    [ "$(id -u)" -ne 0 ] || APT_OPTS+=(-o "APT::Sandbox::User=root")
+    have_trilinos() {     # (no pipe into grep -q: SIGPIPE under pipefail)
+      local idx
+      idx=$(apt-cache "${APT_OPTS[@]}" showsrc trilinos 2>/dev/null || true)
+      grep -qxF "Version: $TRILINOS_VER" <<<"$idx"
+    }
+    if ! have_trilinos; then
+      log "updating the private deb-src list ($APT_PRIV) through setup.sh --check-source"
+      bash "$HERE/setup.sh" --check-source >&2
+    fi
+    have_trilinos || die "no Debian source package trilinos $TRILINOS_VER through $APT_PRIV"
+    log "downloading the Debian source of trilinos $TRILINOS_VER (166 MB, once) into $TRILINOS_DIR"
+    tmp=$(mktemp -d "$CACHE/.trilinos-$TRILINOS_VER.XXXXXX")
+    ( cd "$tmp" && apt-get "${APT_OPTS[@]}" source -q --download-only "trilinos=$TRILINOS_VER" >&2 ) ||
+      { rm -rf "$tmp"; die "apt-get source trilinos=$TRILINOS_VER failed"; }
+    rm -rf "$TRILINOS_DIR"
+    mv "$tmp" "$TRILINOS_DIR"
+    [ -n "$(trilinos_orig)" ] || die "no trilinos_*.orig.tar.* in $TRILINOS_DIR"
+  fi
+fi
+
 # kokkos: our package is compiled into this LAMMPS (the CPU styles into src/,
 # the /kk styles of src/USER-TLSPH/kokkos into src/KOKKOS/), so the build is
 # checked on every call: ninja recompiles what changed (seconds when nothing did)
 REPO=$(cd "$HERE/.." && pwd -P)
 BUILD_ALWAYS=0
-[ "$VARIANT" = kokkos ] && BUILD_ALWAYS=1
+case "$VARIANT" in kokkos|kokkos-cuda) BUILD_ALWAYS=1 ;; esac
 if [ ! -x "$LMP" ] || [ "$BUILD_ALWAYS" = 1 ]; then
   mkdir -p "$PREFIX"
   exec 9>"$PREFIX/.lock"          # one build at a time per cache
@@ -131,10 +223,11 @@ if [ "$BUILD_ALWAYS" = 1 ] && [ -x "$LMP" ] && [ -f "$PREFIX/build/build.ninja" 
     cmake "$BUILD" >&2
   fi
   mv "$PREFIX/tlsph-files.new" "$PREFIX/tlsph-files.txt"
-  ninja -C "$BUILD" -j"$JOBS" lmp_$VARIANT >&2
-  if ! cmp -s "$BUILD/lmp_$VARIANT" "$LMP" || ! cmp -s "$BUILD/liblammps_$VARIANT.so.0" "$PREFIX/lib/liblammps_$VARIANT.so.0"; then
-    cp -a "$BUILD"/liblammps_$VARIANT.so* "$PREFIX/lib/"
-    cp "$BUILD/lmp_$VARIANT" "$PREFIX/bin/lmp.tmp" && mv "$PREFIX/bin/lmp.tmp" "$LMP"
+  ninja -C "$BUILD" -j"$JOBS" lmp_$MACHINE >&2
+  if ! cmp -s "$BUILD/lmp_$MACHINE" "$LMP" || ! cmp -s "$BUILD/liblammps_$MACHINE.so.0" "$PREFIX/lib/liblammps_$MACHINE.so.0"; then
+    cp -a "$BUILD"/liblammps_$MACHINE.so* "$PREFIX/lib/"
+    [ "$VARIANT" != kokkos-cuda ] || cp -a "$BUILD"/lib/kokkos/*/src/libkokkos*.so* "$PREFIX/lib/"
+    cp "$BUILD/lmp_$MACHINE" "$PREFIX/bin/lmp.tmp" && mv "$PREFIX/bin/lmp.tmp" "$LMP"
   fi
   printf '%s\n' "$LMP"
   exit 0
@@ -162,6 +255,16 @@ if [ ! -x "$LMP" ]; then
     SRC_TREE="$PREFIX/source"
     rm -rf "$SRC_TREE"
     cp -al "$LAMMPS_SOURCE_DIR" "$SRC_TREE"
+  elif [ "$VARIANT" = kokkos-cuda ]; then
+    # hard-linked copy of the tree, kept once complete: after a failed or
+    # interrupted build, ninja goes on from where it stopped (the hard links
+    # keep their times; lib/kokkos and our files are updated by content below)
+    SRC_TREE="$PREFIX/source"
+    if [ ! -f "$PREFIX/source.complete" ]; then
+      rm -rf "$SRC_TREE"
+      cp -al "$LAMMPS_SOURCE_DIR" "$SRC_TREE"
+      : > "$PREFIX/source.complete"
+    fi
   fi
   # patch_file REL WHY: the copy's file REL becomes a real file (the shared
   # tree keeps its own), changed by the Python program on stdin (path: argv[1])
@@ -214,6 +317,182 @@ open(p, "w").write(s.replace(old, new))
 KOKKOS_PATCH
     log "patched $f: existing include directories of Kokkos::kokkos plus Kokkos_INCLUDE_DIRS (the only change)"
   fi
+  if [ "$VARIANT" = kokkos-cuda ]; then
+    # Kokkos 3.4.01 from the trilinos source: extracted afresh (5-10 s) into
+    # kokkos.new, patched there (KOKKOS_CUDA_PATCH), then copied into
+    # source/lib/kokkos (which the +ds LAMMPS tree lacks) file by file, only
+    # where the content differs, so that ninja sees real changes only
+    orig=$(trilinos_orig)
+    rm -rf "$PREFIX/kokkos.x" "$PREFIX/kokkos.new"
+    mkdir -p "$PREFIX/kokkos.x"
+    log "extracting packages/kokkos of $(basename "$orig")"
+    tar -xf "$orig" -C "$PREFIX/kokkos.x" --wildcards '*/packages/kokkos/*' ||
+      die "cannot extract packages/kokkos from $orig"
+    mv "$PREFIX"/kokkos.x/*/packages/kokkos "$PREFIX/kokkos.new"
+    rm -rf "$PREFIX/kokkos.x"
+    kkv=$(sed -n 's/^set(Kokkos_VERSION_\(MAJOR\|MINOR\|PATCH\) \([0-9]*\))$/\2/p' "$PREFIX/kokkos.new/CMakeLists.txt" | paste -sd.)
+    [ "$kkv" = 3.4.01 ] || die "trilinos $TRILINOS_VER has Kokkos '$kkv', KOKKOS_CUDA_PATCH is for 3.4.01"
+    /usr/bin/python3 - "$PREFIX/kokkos.new" "$CUDA_HOME/bin/nvcc" <<'KOKKOS_CUDA_PATCH' ||
+import os, re, sys
+kk, nvcc = sys.argv[1], sys.argv[2]
+
+def edit(rel, why, *pairs):
+    """replace each (old, new) in KK/rel, old exactly once; why: the reason"""
+    p = os.path.join(kk, rel)
+    s = open(p).read()
+    for old, new in pairs:
+        n = s.count(old)
+        if n != 1:
+            sys.exit("%s: expected exactly one %r, found %d (%s)" % (rel, old, n, why))
+        s = s.replace(old, new)
+    open(p, "w").write(s)
+    print("patched lib/kokkos/%s: %s" % (rel, why), file=sys.stderr)
+
+# 1. nvcc_wrapper. (a) The default arch, used when no -arch is given (CMake's
+# compiler probes): sm_35, which CUDA 13 rejects (its oldest is sm_75); sm_80
+# is the oldest arch of this build. (b) nvcc is not on PATH: its absolute path
+# (CUDA_ROOT still overrides). (c) Several distinct -gencode= flags are kept
+# (one per target arch, TLSPH_CUDA_GENCODE below); the wrapper stops at a
+# second arch flag otherwise ("ARCH is being set twice").
+edit("bin/nvcc_wrapper", "CUDA 13 default arch, nvcc path, several -gencode",
+     ('default_arch="sm_35"\n',
+      '# tlsph: sm_35 is rejected by CUDA 13 (oldest: sm_75); used only when no\n'
+      '# -arch/-gencode is given (CMake\'s compiler probes)\n'
+      'default_arch="sm_80"\n'),
+     ('nvcc_compiler=nvcc\n',
+      '# tlsph: the toolkit of this build (nvcc need not be on PATH)\n'
+      'nvcc_compiler="%s"\n' % nvcc),
+     ('''    elif [  "$arch_flag" != "$1" ]; then
+        echo "ARCH is being set twice with different flags, which is not handled"
+''', '''    elif [[ "$arch_flag" == -gencode=* && "$1" == -gencode=* ]]; then
+        # tlsph: several -gencode= flags, one per target (duplicates dropped)
+        case " $arch_flag " in
+          *" $1 "*) ;;
+          *) arch_flag="$arch_flag $1"; cuda_args="$cuda_args $1" ;;
+        esac
+    elif [  "$arch_flag" != "$1" ]; then
+        echo "ARCH is being set twice with different flags, which is not handled"
+'''))
+
+# 2. CMake: a Hopper arch (Kokkos 3.4.01 knows NVIDIA archs up to AMPERE86),
+# and TLSPH_CUDA_GENCODE: when set (a list of nvcc "arch=...,code=..." pairs),
+# the arch option adds one -gencode= per entry instead of -arch=sm_XX, to the
+# compile and the link flags (Kokkos 3.4's CMake takes one GPU arch; nvcc
+# builds one fat binary from several -gencode)
+edit("cmake/kokkos_arch.cmake", "HOPPER90 (sm_90), TLSPH_CUDA_GENCODE",
+     ('KOKKOS_ARCH_OPTION(AMPERE86        GPU  "NVIDIA Ampere generation CC 8.6")\n',
+      'KOKKOS_ARCH_OPTION(AMPERE86        GPU  "NVIDIA Ampere generation CC 8.6")\n'
+      '# tlsph: Hopper (H100/H200), not in Kokkos 3.4.01\n'
+      'KOKKOS_ARCH_OPTION(HOPPER90        GPU  "NVIDIA Hopper generation CC 9.0")\n'),
+     ('''      GLOBAL_APPEND(KOKKOS_CUDA_OPTIONS "${CUDA_ARCH_FLAG}=${FLAG}")
+      IF(KOKKOS_ENABLE_CUDA_RELOCATABLE_DEVICE_CODE OR KOKKOS_CXX_COMPILER_ID STREQUAL NVIDIA)
+        GLOBAL_APPEND(KOKKOS_LINK_OPTIONS "${CUDA_ARCH_FLAG}=${FLAG}")
+      ENDIF()
+''', '''      # tlsph: TLSPH_CUDA_GENCODE (nvcc only): one -gencode= per entry instead
+      SET(_TLSPH_ARCH_FLAGS "${CUDA_ARCH_FLAG}=${FLAG}")
+      IF(TLSPH_CUDA_GENCODE AND KOKKOS_CXX_COMPILER_ID STREQUAL NVIDIA)
+        SET(_TLSPH_ARCH_FLAGS)
+        FOREACH(_TLSPH_GC IN LISTS TLSPH_CUDA_GENCODE)
+          LIST(APPEND _TLSPH_ARCH_FLAGS "-gencode=${_TLSPH_GC}")
+        ENDFOREACH()
+        MESSAGE(STATUS "Kokkos arch ${ARCH}: nvcc flags ${_TLSPH_ARCH_FLAGS} (TLSPH_CUDA_GENCODE)")
+      ENDIF()
+      GLOBAL_APPEND(KOKKOS_CUDA_OPTIONS ${_TLSPH_ARCH_FLAGS})
+      IF(KOKKOS_ENABLE_CUDA_RELOCATABLE_DEVICE_CODE OR KOKKOS_CXX_COMPILER_ID STREQUAL NVIDIA)
+        GLOBAL_APPEND(KOKKOS_LINK_OPTIONS ${_TLSPH_ARCH_FLAGS})
+      ENDIF()
+'''),
+     ('CHECK_CUDA_ARCH(AMPERE86  sm_86)\n',
+      'CHECK_CUDA_ARCH(AMPERE86  sm_86)\n'
+      'CHECK_CUDA_ARCH(HOPPER90  sm_90)  # tlsph\n'))
+
+# 3. half_t casts of the CUDA >= 11.1 branch: half_t converts to __half only
+# explicitly (explicit operator impl_type), and CUDA 13's __half2* functions
+# take __half (no implicit conversion path any more): give them
+# half_t::impl_type(val), as the CUDA < 11.1 branch does. CUDA 13 has no
+# __half2double: the float value, widened (exact: every half is a float).
+p = "core/src/Cuda/Kokkos_Cuda_Half.hpp"
+s = open(os.path.join(kk, p)).read()
+mark = "#else  // CUDA 11.1 versions follow\n"
+if s.count(mark) != 1:
+    sys.exit("%s: expected one %r" % (p, mark))
+head, tail = s.split(mark)
+tail, n1 = re.subn(r"__half2double\(val\)",
+                   "static_cast<double>(__half2float(half_t::impl_type(val)))", tail)
+tail, n2 = re.subn(r"(__half2(?:float|short_rz|ushort_rz|int_rz|uint_rz|ll_rz|ull_rz))\(val\)",
+                   r"\1(half_t::impl_type(val))", tail)
+if (n1, n2) != (1, 7):
+    sys.exit("%s: expected 1 __half2double(val) and 7 __half2*(val), found %d, %d" % (p, n1, n2))
+open(os.path.join(kk, p), "w").write(
+    head + "#else  // CUDA 11.1 versions follow\n"
+    "// tlsph: explicit half_t::impl_type(val) for CUDA 13, no __half2double\n" + tail)
+print("patched lib/kokkos/%s: explicit impl_type in the __half2* casts" % p, file=sys.stderr)
+
+# 4. cudaMemPrefetchAsync: CUDA 13 takes (ptr, bytes, cudaMemLocation, flags,
+# stream) instead of (ptr, bytes, device, stream)
+edit("core/src/Cuda/Kokkos_CudaSpace.cpp", "CUDA 13 cudaMemPrefetchAsync",
+     ('''    CUDA_SAFE_CALL(cudaMemPrefetchAsync(ptr, bytes, space.cuda_device(),
+                                        space.cuda_stream()));
+''', '''#if defined(CUDART_VERSION) && CUDART_VERSION >= 13000
+    // tlsph: CUDA 13 signature (ptr, bytes, location, flags, stream)
+    cudaMemLocation location = {};
+    location.type            = cudaMemLocationTypeDevice;
+    location.id              = space.cuda_device();
+    CUDA_SAFE_CALL(
+        cudaMemPrefetchAsync(ptr, bytes, location, 0, space.cuda_stream()));
+#else
+    CUDA_SAFE_CALL(cudaMemPrefetchAsync(ptr, bytes, space.cuda_device(),
+                                        space.cuda_stream()));
+#endif
+'''))
+
+# 5. Start-up check: Kokkos aborts unless the arch of the code that runs
+# (__CUDA_ARCH__ of a probe kernel) has the device's major version. In a fat
+# binary the CUDA runtime picks the best SASS (sm_90 on an H100/H200, sm_80 on
+# A100/A30, sm_80 on sm_86/sm_89) or JIT-compiles the compute_90 PTX on newer
+# GPUs, all of which run; reject only code for a newer arch than the device.
+edit("core/src/Cuda/Kokkos_Cuda_Instance.cpp", "arch check: reject only newer-than-device code",
+     ('    if (compiled_major != cudaProp.major || compiled_minor > cudaProp.minor) {\n',
+      '    // tlsph: reject only code compiled for a newer arch than the device\n'
+      '    // (fat binary: the runtime picks sm_90/sm_80 SASS or JITs compute_90)\n'
+      '    if (m_cudaArch > cudaProp.major * 100 + cudaProp.minor * 10) {\n'))
+KOKKOS_CUDA_PATCH
+      die "cannot patch Kokkos in $PREFIX/kokkos.new (another Kokkos version?)"
+    /usr/bin/python3 - "$PREFIX/kokkos.new" "$SRC_TREE/lib/kokkos" <<'SYNC_KOKKOS' >&2
+import filecmp, os, shutil, sys
+src, dst = sys.argv[1:3]
+changed = removed = 0
+for root, dirs, files in os.walk(src):
+    d = os.path.normpath(os.path.join(dst, os.path.relpath(root, src)))
+    os.makedirs(d, exist_ok=True)
+    for f in files:
+        a, b = os.path.join(root, f), os.path.join(d, f)
+        if (os.path.isfile(b) and not os.path.islink(b) and filecmp.cmp(a, b, shallow=False)
+                and os.stat(a).st_mode & 0o777 == os.stat(b).st_mode & 0o777):
+            continue
+        shutil.copy(a, b + ".tlsph-tmp")       # a new file (never a hard link), new mtime
+        os.replace(b + ".tlsph-tmp", b)
+        changed += 1
+for root, dirs, files in os.walk(dst):
+    for f in files:
+        if not os.path.lexists(os.path.join(src, os.path.relpath(root, dst), f)):
+            os.remove(os.path.join(root, f))
+            removed += 1
+print("build-lammps-plugin.sh: lib/kokkos: %d files new or changed, %d removed" % (changed, removed))
+SYNC_KOKKOS
+    rm -rf "$PREFIX/kokkos.new"
+    # nvcc_wrapper as the C++ compiler (it runs nvcc, and g++ for the host
+    # code); Kokkos's find_package(CUDAToolkit) (libcudart) in the same
+    # toolkit; RUNPATH: also the toolkit's libcudart.so.13, wherever ld.so looks
+    EXTRA_PKGS+=(-D CMAKE_CXX_COMPILER="$SRC_TREE/lib/kokkos/bin/nvcc_wrapper"
+                 -D CUDAToolkit_ROOT="$CUDA_HOME"
+                 -D "CMAKE_INSTALL_RPATH=\$ORIGIN/../lib;$CUDA_HOME/lib64")
+    printf '%s\n' "$NVCC_VERSION" > "$PREFIX/nvcc-version.txt"
+    # our files: updated by content, the list of the last sync kept
+    sync_tlsph "$PREFIX/tlsph-files.new"
+    mv "$PREFIX/tlsph-files.new" "$PREFIX/tlsph-files.txt"
+    log "our package compiled in: $(wc -l < "$PREFIX/tlsph-files.txt") files of src/USER-TLSPH (and kokkos/) in $SRC_TREE/src"
+  fi
   if [ "$VARIANT" = kokkos ]; then
     rm -f "$PREFIX/tlsph-files.txt"
     sync_tlsph "$PREFIX/tlsph-files.new"
@@ -229,7 +508,7 @@ KOKKOS_PATCH
     -D CMAKE_BUILD_TYPE=Release \
     -D CMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
     -D BUILD_MPI=on -D BUILD_OMP=off -D BUILD_SHARED_LIBS=on \
-    -D LAMMPS_MACHINE=$VARIANT -D LAMMPS_SIZES=smallbig -D LAMMPS_EXCEPTIONS=off \
+    -D LAMMPS_MACHINE=$MACHINE -D LAMMPS_SIZES=smallbig -D LAMMPS_EXCEPTIONS=off \
     -D PKG_PLUGIN=on -D PKG_PERI=on \
     -D PKG_KSPACE=off -D PKG_MANYBODY=off -D PKG_MOLECULE=off -D PKG_RIGID=off \
     -D PKG_PYTHON=off -D PKG_OPENMP=off -D PKG_KOKKOS=off -D PKG_GPU=off \
@@ -239,24 +518,73 @@ KOKKOS_PATCH
     -D CMAKE_INSTALL_RPATH='$ORIGIN/../lib' -D CMAKE_BUILD_WITH_INSTALL_RPATH=on \
     -D CMAKE_SKIP_INSTALL_RPATH=off -D Python_EXECUTABLE=/usr/bin/python3 \
     "${EXTRA_PKGS[@]}" >&2
-  ninja -C "$BUILD" -j"$JOBS" lmp_$VARIANT >&2
+  ninja -C "$BUILD" -j"$JOBS" lmp_$MACHINE >&2
 
   # symbols a dlopen()ed plugin needs are exported by the shared library
-  so="$BUILD/liblammps_$VARIANT.so.0"
+  so="$BUILD/liblammps_$MACHINE.so.0"
   syms=$(nm -D --defined-only "$so")
   grep -q ' T _ZN9LAMMPS_NS4PairC2EPNS_6LAMMPSE$' <<<"$syms" ||
     die "$so does not export LAMMPS_NS::Pair::Pair(LAMMPS*)"
   grep -q ' T _ZN9LAMMPS_NS15plugin_registerEP14lammpsplugin_tPv$' <<<"$syms" ||
     die "$so has no LAMMPS_NS::plugin_register: PLUGIN package not built"
+  # kokkos-cuda: the library's fat binaries hold GPU code for every arch of
+  # TLSPH_CUDA_GENCODE (what `cuobjdump --list-elf` shows; CUDA 13 fat
+  # binaries, read here from .nv_fatbin, as this toolkit may lack cuobjdump)
+  if [ "$VARIANT" = kokkos-cuda ]; then
+    /usr/bin/python3 - "$so" sm_90 sm_80 compute_90 <<'FATBIN_CHECK' >&2 ||
+import collections, os, struct, subprocess, sys, tempfile
+so, want = sys.argv[1], sys.argv[2:]
+with tempfile.TemporaryDirectory() as d:
+    subprocess.run(["objcopy", "-O", "binary", "--only-section=.nv_fatbin", so,
+                    os.path.join(d, "f")], check=True)
+    data = open(os.path.join(d, "f"), "rb").read()
+# containers: u32 magic 0xBA55ED50, u16 version, u16 header size, u64 size;
+# then entries: u16 kind (1 PTX, 2 ELF), u16, u32 entry header size, u64
+# payload size, ..., u32 at byte 28: the arch; the payload follows. An
+# uncompressed ELF payload (a cubin) has its arch in e_flags bits 8-15.
+count, fatbins, p, bad = collections.Counter(), 0, 0, 0
+magic = struct.pack("<I", 0xBA55ED50)
+while True:
+    p = data.find(magic, p)
+    if p < 0:
+        break
+    _, _, hsize, size = struct.unpack_from("<IHHQ", data, p)
+    q, end, fatbins = p + hsize, p + hsize + size, fatbins + 1
+    while q + 32 <= end:
+        kind, _, ehsize, psize = struct.unpack_from("<HHIQ", data, q)
+        if ehsize == 0:
+            break
+        arch = struct.unpack_from("<I", data, q + 28)[0]
+        pl = data[q + ehsize:q + ehsize + 64]
+        if kind == 2 and pl[:4] == b"\x7fELF" and (struct.unpack_from("<I", pl, 48)[0] >> 8) & 0xff != arch:
+            bad += 1
+        count[{1: "compute_%d", 2: "sm_%d"}.get(kind, "kind%d_" % kind + "%d") % arch] += 1
+        q += ehsize + psize
+    p = end
+print("build-lammps-plugin.sh: %s: %d fat binaries in .nv_fatbin (%d bytes): %s" % (
+    os.path.basename(so), fatbins, len(data),
+    ", ".join("%s %d" % (k.replace("sm_", "ELF sm_").replace("compute_", "PTX compute_"), n)
+              for k, n in sorted(count.items()))))
+missing = [w for w in want if not count[w]]
+if missing or bad:
+    sys.exit("no GPU code for %s; %d cubins whose ELF arch differs" % (" ".join(missing) or "-", bad))
+FATBIN_CHECK
+      die "$so lacks GPU code of TLSPH_CUDA_GENCODE"
+  fi
 
   mkdir -p "$PREFIX/bin" "$PREFIX/lib"
-  cp -a "$BUILD"/liblammps_$VARIANT.so* "$PREFIX/lib/"
-  cp "$BUILD/lmp_$VARIANT" "$PREFIX/bin/lmp.tmp"
+  cp -a "$BUILD"/liblammps_$MACHINE.so* "$PREFIX/lib/"
+  # kokkos-cuda: the bundled Kokkos is built as shared libraries too
+  [ "$VARIANT" != kokkos-cuda ] || cp -a "$BUILD"/lib/kokkos/*/src/libkokkos*.so* "$PREFIX/lib/"
+  cp "$BUILD/lmp_$MACHINE" "$PREFIX/bin/lmp.tmp"
   # it must load our library, and 'plugin' must be a working command
   # (LMP_PLUGIN defined), not the "Ignoring plugin command" stub
   deps=$(ldd "$PREFIX/bin/lmp.tmp")
-  grep -q "liblammps_$VARIANT.so.0 => /" <<<"$deps" && ! grep -q 'liblammps.so' <<<"$deps" ||
-    { printf '%s\n' "$deps" >&2; die "$PREFIX/bin/lmp.tmp does not load lib/liblammps_$VARIANT.so.0"; }
+  grep -q "liblammps_$MACHINE.so.0 => /" <<<"$deps" && ! grep -q 'liblammps.so' <<<"$deps" ||
+    { printf '%s\n' "$deps" >&2; die "$PREFIX/bin/lmp.tmp does not load lib/liblammps_$MACHINE.so.0"; }
+  # (kokkos-cuda: runs without a GPU, as the CUDA driver, libcuda.so.1, is
+  # not linked but loaded by the CUDA runtime at the first CUDA call, and
+  # without -k on Kokkos is not initialised)
   out=$(cd "$PREFIX" && echo "plugin list" | "$PREFIX/bin/lmp.tmp" -log none -echo none 2>&1) || true
   grep -q "Currently loaded plugins" <<<"$out" || { printf '%s\n' "$out" >&2;
     die "'plugin list' does not work in $PREFIX/bin/lmp.tmp"; }

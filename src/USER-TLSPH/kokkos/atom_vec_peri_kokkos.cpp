@@ -60,10 +60,8 @@ static const char cite_peri_package[] =
 
 namespace {
 
-// standard-mask fields of this style, and its extended-mask fields
+// the extended-mask fields of this style
 
-constexpr unsigned int PERI_STD = X_MASK | V_MASK | F_MASK | TAG_MASK | TYPE_MASK |
-  MASK_MASK | IMAGE_MASK | RMASS_MASK;
 constexpr unsigned int PERI_EXT = VFRAC_MASK | S0_MASK | X0_MASK;    // == PERI_MASK
 constexpr unsigned int EXT_ALL = EXTENDED_MASK | PERI_EXT;
 constexpr unsigned int EXT_S0 = EXTENDED_MASK | S0_MASK;
