@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
-# Side by side: the CPU styles and their /kk variants (Kokkos host backend),
-# run by ONE LAMMPS binary (make kokkos: KOKKOS, PERI, PLUGIN and this package
-# compiled in), on the same particles (bench/in.bench), alternating,
-# KOKKOS_REPEAT (3) repeats, medians of the "Loop time" of the timed run.
-# Cases: the 2D and 3D blocks with newton on (both scatter) and newton off
-# (both gather), serial and on 2 MPI ranks.
+# Side by side: the CPU styles and their /kk variants on the host, each
+# comparison in ONE LAMMPS binary with this package compiled in, on the same
+# particles (bench/in.bench), alternating, KOKKOS_REPEAT (3) repeats, medians
+# of the "Loop time" of the timed run.
+#   serial binary (make kokkos, Debian's Kokkos, Serial backend):
+#     tlsph and tlsph/kk on 1 and on 2 MPI ranks
+#   OpenMP binary (build-lammps-plugin.sh kokkos-omp: bundled Kokkos 3.4.01,
+#   OpenMP + Serial; built the first time, ~10 min; KOKKOS_OMP=0 skips it):
+#     tlsph on 1 and 2 MPI ranks, tlsph/kk with 1 and 2 OpenMP threads
+# Cases: the 2D and 3D blocks with newton on (scatter) and off (gather).
 # Writes bench/kokkos.md and prints it.
 #   bash bench/kokkos.sh                 (make bench-kokkos)
 #   KOKKOS_QUICK=1 bash bench/kokkos.sh  smoke: small blocks, 1 repeat
@@ -12,30 +16,41 @@ set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(dirname "$HERE")"
 LMP=$(bash "$ROOT/scripts/build-lammps-plugin.sh" kokkos | tail -n1)
+LMP_OMP=""
+if [ "${KOKKOS_OMP:-1}" != 0 ]; then
+  LMP_OMP=$(bash "$ROOT/scripts/build-lammps-plugin.sh" kokkos-omp | tail -n1)
+fi
 REPEAT=${KOKKOS_REPEAT:-3}
 if [ "${KOKKOS_QUICK:-0}" != 0 ]; then n2=40 n3=10 s2=20 s3=5 REPEAT=1; else n2=120 n3=24 s2=200 s3=50; fi
 OUT="$HERE/out/kokkos"; mkdir -p "$OUT"
-MPI=(mpirun --oversubscribe)
+MPI=(mpirun --oversubscribe -x OMP_NUM_THREADS -x OMP_PROC_BIND)
 [ "$(id -u)" = 0 ] && MPI+=(--allow-run-as-root)
-# case: name dim n nsteps ranks newton
-cases=("2D $n2 2 $s2 1 on" "2D $n2 2 $s2 1 off" "3D $n3 3 $s3 1 on" "3D $n3 3 $s3 1 off"
-       "2D $n2 2 $s2 2 on" "3D $n3 3 $s3 2 on")
+export OMP_PROC_BIND=false
+# case: name dim n nsteps newton
+cases=("2D $n2 2 $s2 on" "2D $n2 2 $s2 off" "3D $n3 3 $s3 on" "3D $n3 3 $s3 off")
+# run: label binary ranks threads kk
+runs=("serial:cpu-1rank serial 1 1 0" "serial:kk-1rank serial 1 1 1"
+      "serial:cpu-2ranks serial 2 1 0" "serial:kk-2ranks serial 2 1 1")
+[ -n "$LMP_OMP" ] && runs+=("openmp:cpu-1rank omp 1 1 0" "openmp:cpu-2ranks omp 2 1 0"
+                            "openmp:kk-1thread omp 1 1 1" "openmp:kk-2threads omp 1 2 1")
 : > "$OUT/times.txt"
 for r in $(seq "$REPEAT"); do
   for c in "${cases[@]}"; do
-    set -- $c; name=$1 n=$2 dim=$3 ns=$4 np=$5 newton=$6
-    for code in cpu kk; do
-      kk=(); [ "$code" = kk ] && kk=(-k on -sf kk)
-      run=("$LMP"); [ "$np" -gt 1 ] && run=("${MPI[@]}" -np "$np" "$LMP")
-      log="$OUT/$name-np$np-$newton-$code-$r.log"
-      sed "s/^units .*/&\nnewton     $newton/" "$HERE/in.bench" > "$OUT/in.bench.$newton"
-      (cd "$OUT" && "${run[@]}" "${kk[@]}" -in "in.bench.$newton" -var dim "$dim" -var n "$n" \
-         -var nsteps "$ns" -log none -echo none > "$log" 2>&1) ||
-        { tail -5 "$log" >&2; echo "kokkos bench: $name $code failed (log $log)" >&2; exit 1; }
+    set -- $c; name=$1 n=$2 dim=$3 ns=$4 newton=$5
+    sed "s/^units .*/&\nnewton     $newton/" "$HERE/in.bench" > "$OUT/in.bench.$newton"
+    for spec in "${runs[@]}"; do
+      set -- $spec; label=$1 bin=$2 np=$3 nt=$4 kk=$5
+      lmp=$LMP; [ "$bin" = omp ] && lmp=$LMP_OMP
+      flags=(); [ "$kk" = 1 ] && flags=(-k on t "$nt" -sf kk)
+      run=("$lmp"); [ "$np" -gt 1 ] && run=("${MPI[@]}" -np "$np" "$lmp")
+      log="$OUT/$name-$newton-${label/:/-}-$r.log"
+      (cd "$OUT" && OMP_NUM_THREADS=$nt "${run[@]}" "${flags[@]}" -in "in.bench.$newton" \
+         -var dim "$dim" -var n "$n" -var nsteps "$ns" -log none -echo none > "$log" 2>&1) ||
+        { tail -5 "$log" >&2; echo "kokkos bench: $name $label failed (log $log)" >&2; exit 1; }
       t=$(grep "Loop time" "$log" | tail -1 | awk '{print $4}')
       natoms=$(grep "Loop time" "$log" | tail -1 | awk '{print $(NF-1)}')
-      echo "$name $np $newton $code $r $natoms $ns $t" >> "$OUT/times.txt"
-      echo "kokkos bench: $name np$np newton $newton $code repeat $r: $t s" >&2
+      echo "$name $newton $label $r $natoms $ns $t" >> "$OUT/times.txt"
+      echo "kokkos bench: $name newton $newton $label repeat $r: $t s" >&2
     done
   done
 done
@@ -43,31 +58,41 @@ done
 import sys, statistics, collections, datetime
 rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
 t = collections.defaultdict(list)
-meta = {}
-for name, np, newton, code, r, natoms, ns, sec in rows:
-    t[(name, np, newton, code)].append(float(sec))
-    meta[(name, np, newton)] = (int(natoms), int(ns))
+meta, labels = {}, []
+for name, newton, label, r, natoms, ns, sec in rows:
+    t[(name, newton, label)].append(float(sec))
+    meta[(name, newton)] = (int(natoms), int(ns))
+    if label not in labels:
+        labels.append(label)
 out = ["# tlsph/kk against tlsph on the host (bench/kokkos.sh)", "",
        "Generated by `bash bench/kokkos.sh` on %s, code %s, %s repeat(s), medians."
        % (datetime.date.today(), sys.argv[3], sys.argv[4]),
-       "One LAMMPS binary (`make kokkos`: Kokkos **Serial** backend, Debian's Kokkos), the",
-       "same input (bench/in.bench: steel block, quadratic gradient, viscosity and",
-       "hourglass on), alternating runs; time = Loop time of the timed run. The /kk",
-       "styles run with `-k on -sf kk` (pair tlsph/kk, fix nve/kk, atom_style peri/kk).",
-       "ns/particle-step = time / (particles x steps) per rank count shown.", "",
-       "| case | ranks | newton | particles | steps | tlsph [s] | tlsph/kk [s] | kk / cpu | tlsph ns/particle-step | tlsph/kk ns/particle-step |",
-       "|---|---|---|---|---|---|---|---|---|---|"]
-for key in sorted(meta, key=lambda k: (k[0], int(k[1]), k[2] != "on")):
-    name, np, newton = key
-    natoms, ns = meta[key]
-    a = statistics.median(t[(name, np, newton, "cpu")])
-    b = statistics.median(t[(name, np, newton, "kk")])
-    out.append("| %s | %s | %s | %d | %d | %.3f | %.3f | %.2f | %.0f | %.0f |"
-               % (name, np, newton, natoms, ns, a, b, b / a, 1e9 * a / (natoms * ns),
-                  1e9 * b / (natoms * ns)))
-out += ["", "Spread of the repeats (max/min of each column): " + ", ".join(
-    "%s np%s %s %s %.2f" % (k[0], k[1], k[2], k[3], max(v) / min(v)) for k, v in sorted(t.items())
-    if len(v) > 1) or "one repeat", ""]
+       "Input bench/in.bench (steel block, quadratic gradient, viscosity and hourglass",
+       "on), timed run's Loop time. Two binaries, each compared only with itself:",
+       "*serial* (`make kokkos`: Debian's Kokkos, Serial backend) and *openmp*",
+       "(`build-lammps-plugin.sh kokkos-omp`: Kokkos 3.4.01 from Debian's trilinos",
+       "source, OpenMP + Serial). `cpu` = pair tlsph (plain LAMMPS, MPI ranks), `kk` =",
+       "pair tlsph/kk with `-k on t N -sf kk` (fix nve/kk, atom_style peri/kk).",
+       "ns/p-s = wall time per particle-step (all ranks/threads together);",
+       "`/ cpu-1rank` = time relative to the CPU style on 1 rank of the same binary.",
+       "Machine: 2 cores, shared (see the spread below).", ""]
+for (name, newton) in sorted(meta, key=lambda k: (k[0], k[1] != "on")):
+    natoms, ns = meta[(name, newton)]
+    out += ["## %s block, %d particles, %d steps, newton %s (%s form)"
+            % (name, natoms, ns, newton, "scatter" if newton == "on" else "gather"), "",
+            "| binary:run | time [s] | ns/p-s | / cpu-1rank |", "|---|---|---|---|"]
+    for label in labels:
+        v = t.get((name, newton, label))
+        if not v:
+            continue
+        med = statistics.median(v)
+        base = t.get((name, newton, label.split(":")[0] + ":cpu-1rank"))
+        rel = med / statistics.median(base) if base else float("nan")
+        out.append("| %s | %.3f | %.0f | %.2f |" % (label, med, 1e9 * med / (natoms * ns), rel))
+    out.append("")
+out += ["Spread of the repeats (max/min): " + (", ".join(
+    "%s %s %s %.2f" % (k[0], k[1], k[2], max(v) / min(v)) for k, v in sorted(t.items())
+    if len(v) > 1) or "one repeat"), ""]
 open(sys.argv[2], "w").write("\n".join(out))
 print("\n".join(out))
 PY

@@ -62,6 +62,12 @@
 # (nvcc_wrapper compiles every LAMMPS file: about 45 min on 2 shared cores).
 # The nvcc version is recorded (nvcc-version.txt): another nvcc is refused.
 #
+# `build-lammps-plugin.sh kokkos-omp` builds the same bundled Kokkos (from the
+# same trilinos source, unpatched) for the host with the OpenMP and Serial
+# backends (BUILD_OMP), g++ as the compiler, our package compiled in, in
+# lammps-kokkos-omp-<source version>/ (liblammps_kokkos_omp.so.0): the
+# threads-against-ranks benchmark of bench/kokkos.sh (doc/kokkos.md).
+#
 # Why BUILD_SHARED_LIBS=on: in this LAMMPS version (20220106) the CMake build
 # defines LMP_PLUGIN (without which `plugin load` is a no-op that only prints
 # a warning) only for a shared-library build; the plugin's undefined LAMMPS
@@ -91,7 +97,13 @@ case "$VARIANT" in
                       -D Kokkos_ENABLE_CUDA=on -D Kokkos_ENABLE_CUDA_UVM=off
                       -D Kokkos_ARCH_HOPPER90=on
                       -D "TLSPH_CUDA_GENCODE=arch=compute_90,code=sm_90;arch=compute_90,code=compute_90;arch=compute_80,code=sm_80") ;;
-  *) die "unknown variant '$VARIANT' (allowed: plugin, bench, kokkos, kokkos-cuda)" ;;
+  # kokkos-omp: the same bundled Kokkos for the host, OpenMP + Serial (no patch
+  # needed): the threads-against-ranks benchmark (bench/kokkos.sh)
+  kokkos-omp)
+          EXTRA_PKGS=(-D PKG_KOKKOS=on -D EXTERNAL_KOKKOS=off -D DOWNLOAD_KOKKOS=off
+                      -D Kokkos_ENABLE_SERIAL=on -D Kokkos_ENABLE_OPENMP=on
+                      -D Kokkos_ENABLE_CUDA=off -D BUILD_OMP=on) ;;
+  *) die "unknown variant '$VARIANT' (allowed: plugin, bench, kokkos, kokkos-cuda, kokkos-omp)" ;;
 esac
 # LAMMPS_MACHINE: the variant's name, with '_' for '-' (lmp_kokkos_cuda,
 # liblammps_kokkos_cuda.so.0); the same as the variant for the others
@@ -145,7 +157,7 @@ fi
 # against the signed index) into $CACHE/trilinos-<version>/, through the
 # private deb-src list of setup.sh ($CACHE/apt; `setup.sh --check-source`
 # writes and updates it when it has no such trilinos)
-if [ "$VARIANT" = kokkos-cuda ]; then
+if [ "$VARIANT" = kokkos-cuda ] || [ "$VARIANT" = kokkos-omp ]; then
   TRILINOS_VER=${TLSPH_TRILINOS_VERSION:-13.2.0-4}
   TRILINOS_DIR="$CACHE/trilinos-$TRILINOS_VER"
   trilinos_orig() { ls "$TRILINOS_DIR"/trilinos_*.orig.tar.* 2>/dev/null | head -n1 || true; }
@@ -186,7 +198,7 @@ fi
 # checked on every call: ninja recompiles what changed (seconds when nothing did)
 REPO=$(cd "$HERE/.." && pwd -P)
 BUILD_ALWAYS=0
-case "$VARIANT" in kokkos|kokkos-cuda) BUILD_ALWAYS=1 ;; esac
+case "$VARIANT" in kokkos|kokkos-cuda|kokkos-omp) BUILD_ALWAYS=1 ;; esac
 if [ ! -x "$LMP" ] || [ "$BUILD_ALWAYS" = 1 ]; then
   mkdir -p "$PREFIX"
   exec 9>"$PREFIX/.lock"          # one build at a time per cache
@@ -226,7 +238,7 @@ if [ "$BUILD_ALWAYS" = 1 ] && [ -x "$LMP" ] && [ -f "$PREFIX/build/build.ninja" 
   ninja -C "$BUILD" -j"$JOBS" lmp_$MACHINE >&2
   if ! cmp -s "$BUILD/lmp_$MACHINE" "$LMP" || ! cmp -s "$BUILD/liblammps_$MACHINE.so.0" "$PREFIX/lib/liblammps_$MACHINE.so.0"; then
     cp -a "$BUILD"/liblammps_$MACHINE.so* "$PREFIX/lib/"
-    [ "$VARIANT" != kokkos-cuda ] || cp -a "$BUILD"/lib/kokkos/*/src/libkokkos*.so* "$PREFIX/lib/"
+    case "$VARIANT" in kokkos-cuda|kokkos-omp) cp -a "$BUILD"/lib/kokkos/*/src/libkokkos*.so* "$PREFIX/lib/" ;; esac
     cp "$BUILD/lmp_$MACHINE" "$PREFIX/bin/lmp.tmp" && mv "$PREFIX/bin/lmp.tmp" "$LMP"
   fi
   printf '%s\n' "$LMP"
@@ -255,7 +267,7 @@ if [ ! -x "$LMP" ]; then
     SRC_TREE="$PREFIX/source"
     rm -rf "$SRC_TREE"
     cp -al "$LAMMPS_SOURCE_DIR" "$SRC_TREE"
-  elif [ "$VARIANT" = kokkos-cuda ]; then
+  elif [ "$VARIANT" = kokkos-cuda ] || [ "$VARIANT" = kokkos-omp ]; then
     # hard-linked copy of the tree, kept once complete: after a failed or
     # interrupted build, ninja goes on from where it stopped (the hard links
     # keep their times; lib/kokkos and our files are updated by content below)
@@ -317,7 +329,7 @@ open(p, "w").write(s.replace(old, new))
 KOKKOS_PATCH
     log "patched $f: existing include directories of Kokkos::kokkos plus Kokkos_INCLUDE_DIRS (the only change)"
   fi
-  if [ "$VARIANT" = kokkos-cuda ]; then
+  if [ "$VARIANT" = kokkos-cuda ] || [ "$VARIANT" = kokkos-omp ]; then
     # Kokkos 3.4.01 from the trilinos source: extracted afresh (5-10 s) into
     # kokkos.new, patched there (KOKKOS_CUDA_PATCH), then copied into
     # source/lib/kokkos (which the +ds LAMMPS tree lacks) file by file, only
@@ -332,7 +344,8 @@ KOKKOS_PATCH
     rm -rf "$PREFIX/kokkos.x"
     kkv=$(sed -n 's/^set(Kokkos_VERSION_\(MAJOR\|MINOR\|PATCH\) \([0-9]*\))$/\2/p' "$PREFIX/kokkos.new/CMakeLists.txt" | paste -sd.)
     [ "$kkv" = 3.4.01 ] || die "trilinos $TRILINOS_VER has Kokkos '$kkv', KOKKOS_CUDA_PATCH is for 3.4.01"
-    /usr/bin/python3 - "$PREFIX/kokkos.new" "$CUDA_HOME/bin/nvcc" <<'KOKKOS_CUDA_PATCH' ||
+    # (kokkos-omp: Kokkos unpatched; the CUDA patch runs for kokkos-cuda only)
+    [ "$VARIANT" != kokkos-cuda ] || /usr/bin/python3 - "$PREFIX/kokkos.new" "$CUDA_HOME/bin/nvcc" <<'KOKKOS_CUDA_PATCH' ||
 import os, re, sys
 kk, nvcc = sys.argv[1], sys.argv[2]
 
@@ -481,13 +494,15 @@ for root, dirs, files in os.walk(dst):
 print("build-lammps-plugin.sh: lib/kokkos: %d files new or changed, %d removed" % (changed, removed))
 SYNC_KOKKOS
     rm -rf "$PREFIX/kokkos.new"
-    # nvcc_wrapper as the C++ compiler (it runs nvcc, and g++ for the host
-    # code); Kokkos's find_package(CUDAToolkit) (libcudart) in the same
-    # toolkit; RUNPATH: also the toolkit's libcudart.so.13, wherever ld.so looks
-    EXTRA_PKGS+=(-D CMAKE_CXX_COMPILER="$SRC_TREE/lib/kokkos/bin/nvcc_wrapper"
-                 -D CUDAToolkit_ROOT="$CUDA_HOME"
-                 -D "CMAKE_INSTALL_RPATH=\$ORIGIN/../lib;$CUDA_HOME/lib64")
-    printf '%s\n' "$NVCC_VERSION" > "$PREFIX/nvcc-version.txt"
+    if [ "$VARIANT" = kokkos-cuda ]; then
+      # nvcc_wrapper as the C++ compiler (it runs nvcc, and g++ for the host
+      # code); Kokkos's find_package(CUDAToolkit) (libcudart) in the same
+      # toolkit; RUNPATH: also the toolkit's libcudart.so.13, wherever ld.so looks
+      EXTRA_PKGS+=(-D CMAKE_CXX_COMPILER="$SRC_TREE/lib/kokkos/bin/nvcc_wrapper"
+                   -D CUDAToolkit_ROOT="$CUDA_HOME"
+                   -D "CMAKE_INSTALL_RPATH=\$ORIGIN/../lib;$CUDA_HOME/lib64")
+      printf '%s\n' "$NVCC_VERSION" > "$PREFIX/nvcc-version.txt"
+    fi
     # our files: updated by content, the list of the last sync kept
     sync_tlsph "$PREFIX/tlsph-files.new"
     mv "$PREFIX/tlsph-files.new" "$PREFIX/tlsph-files.txt"
@@ -575,7 +590,7 @@ FATBIN_CHECK
   mkdir -p "$PREFIX/bin" "$PREFIX/lib"
   cp -a "$BUILD"/liblammps_$MACHINE.so* "$PREFIX/lib/"
   # kokkos-cuda: the bundled Kokkos is built as shared libraries too
-  [ "$VARIANT" != kokkos-cuda ] || cp -a "$BUILD"/lib/kokkos/*/src/libkokkos*.so* "$PREFIX/lib/"
+  case "$VARIANT" in kokkos-cuda|kokkos-omp) cp -a "$BUILD"/lib/kokkos/*/src/libkokkos*.so* "$PREFIX/lib/" ;; esac
   cp "$BUILD/lmp_$MACHINE" "$PREFIX/bin/lmp.tmp"
   # it must load our library, and 'plugin' must be a working command
   # (LMP_PLUGIN defined), not the "Ignoring plugin command" stub
