@@ -3,7 +3,7 @@
 
 All runs use one LAMMPS, built by scripts/build-lammps-plugin.sh kokkos with
 the KOKKOS, PERI and PLUGIN packages and this package compiled in (Kokkos host
-backend): the CPU styles without -k, the /kk styles with -k on -sf kk and
+backend; or kokkos-omp with --threads N): the CPU styles without -k, the /kk styles with -k on -sf kk and
 explicit /kk style names (-var kk /kk), so a missing /kk style is an error,
 not a silent fall-back to the CPU style.
 
@@ -55,10 +55,12 @@ def lmp_run(args, tag, inp, extra, kk, np=1):
         if hasattr(os, "geteuid") and os.geteuid() == 0:
             cmd += ["--allow-run-as-root"]
         cmd += ["-np", str(np)]
-    cmd += [args.lmp] + (KK if kk else []) + ["-in", inp, "-log", tag + ".log", "-screen",
+    kkflags = ["-k", "on", "t", str(args.threads)] + KK[2:] if kk else []
+    cmd += [args.lmp] + kkflags + ["-in", inp, "-log", tag + ".log", "-screen",
                                                "none", "-var", "out", tag] + list(extra)
+    env = dict(os.environ, OMP_NUM_THREADS=str(args.threads), OMP_PROC_BIND="false")
     p = subprocess.run(cmd, cwd=args.workdir, capture_output=True, text=True,
-                       timeout=args.timeout)
+                       timeout=args.timeout, env=env)
     log = open(os.path.join(args.workdir, tag + ".log")).read() \
         if os.path.exists(os.path.join(args.workdir, tag + ".log")) else ""
     out = p.stdout + p.stderr + log
@@ -144,7 +146,8 @@ def case_mpi(args):
     # a launcher that gives run_mpi.py's lmp the /kk styles
     wrapper = os.path.join(args.workdir, "lmp_kk.sh")
     with open(wrapper, "w") as fp:
-        fp.write('#!/bin/sh\nexec "%s" %s "$@"\n' % (args.lmp, " ".join(KK)))
+        fp.write('#!/bin/sh\nexec "%s" %s "$@"\n'
+                 % (args.lmp, " ".join(["-k", "on", "t", str(args.threads)] + KK[2:])))
     os.chmod(wrapper, 0o755)
     problems = []
     mpi = os.path.join(HERE, "..", "lammps", "mpi")
@@ -295,6 +298,9 @@ def main():
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart", "damage"])
     ap.add_argument("--timeout", type=float, default=300)
+    ap.add_argument("--threads", type=int, default=1,
+                    help="Kokkos threads of the /kk runs (-k on t N; >1 needs an OpenMP "
+                         "Kokkos, build-lammps-plugin.sh kokkos-omp)")
     args = ap.parse_args()
     os.makedirs(args.workdir, exist_ok=True)
     shutil.copy(MATERIALS, args.workdir)
