@@ -5,6 +5,7 @@
 #include "fix_tlsph_bonds.h"
 
 #include "atom.h"
+#include "atom_masks.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
@@ -16,6 +17,11 @@
 
 #include <cmath>
 #include <cstring>
+
+#ifdef LMP_KOKKOS    // compiled into a LAMMPS with the KOKKOS package (make kokkos)
+#include "atom_kokkos.h"
+#include "kokkos.h"
+#endif
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -38,6 +44,15 @@ FixTLSPHBonds::FixTLSPHBonds(LAMMPS *lmp, int narg, char **arg) :
   frozen = nullptr;
   cutoff = 0.0;
   nbonds_total = 0;
+
+  // with -k on (KOKKOS): LAMMPS copies datamask_read to the host before
+  // each hook of this fix and marks datamask_modify as changed there after
+  // it. Every step (end_of_step) this fix reads only v and changes no atom
+  // data; the partner search syncs what it needs itself (find_partners).
+  // The default, ALL_MASK both, would move every atom array to the host and
+  // back each step (a no-op with the host backends, not on a GPU).
+  datamask_read = V_MASK | MASK_MASK;
+  datamask_modify = EMPTY_MASK;
 
   // placeholder size until the partners are known
   maxpartner = 1;
@@ -168,6 +183,10 @@ void FixTLSPHBonds::tally_work(double dt)
 void FixTLSPHBonds::find_partners()
 {
   if (cutoff <= 0.0) error->all(FLERR, "TLSPH_BONDS: search radius not set by pair tlsph");
+#ifdef LMP_KOKKOS
+  // (datamask_read above has only v): x, x0, tag, ... to the host
+  if (lmp->kokkos) ((AtomKokkos *) atom)->sync(Host, ALL_MASK);
+#endif
   first = 0;
   fresh = 1;
 
