@@ -369,38 +369,24 @@ void PairTLSPHDamage::deform_and_break()
     for (int m = 0; m < n;) {
       const int j = bj[m];
       const double *xj = x[j], *x0j = x0[j];
-      // s = (r - r0)/r0 >= s_c  <=>  r^2 >= r0^2 (1 + s_c)^2 (and, with the
-      // absolute criterion, s <= -s_c  <=>  r^2 <= r0^2 (1 - s_c)^2): a cheap
-      // filter without square roots; only bonds within round-off of the limit
-      // or beyond it are decided with the stretch itself, as documented
-      double du[3], r2 = 0.0, r02 = 0.0;
-      for (int d = 0; d < DIM; d++) {
-        const double dx = xj[d] - xi[d];
-        const double X = x0j[d] - x0i[d];
-        du[d] = dx - X;
-        r2 += dx * dx;
-        r02 += X * X;
-      }
-      const double lim_up = PAIRS ? up[ti + type[j]] * (1.0 - 1.0e-10) : up0;
-      bool suspect = r2 >= r02 * lim_up;
-      if (ABS) suspect = suspect || r2 <= r02 * (PAIRS ? down[ti + type[j]] * (1.0 + 1.0e-10) : down0);
-      if (suspect) {
-        const double r0 = sqrt(r02);
-        double st = (sqrt(r2) - r0) / r0;
-        if (ABS) st = fabs(st);
-        if (st >= MIN(sc[type[i]], sc[type[j]])) {
-          bonds->state[i][lean.k[s + m]] = FixTLSPHBonds::BROKEN;
-          nbroken_local++;
-          // move the bond behind the intact ones (it stays in the segment:
-          // the 'setup' policy keeps it in the correction); the bond moved
-          // into slot m is examined next
-          if (!rebuild)
-            for (int d = 0; d < DIM; d++) sumg[i][d] -= bg[DIM * m + d];
-          // keep the leading bonds first (pair_tlsph.h: nlead)
-          TLSPH::drop_bond<DIM>(bj, bg, lean.w + 2 * (bigint) s, lean.k + s, m, nlead[i], n);
-          changed = true;
-          continue;
-        }
+      // the stretch criterion (tlsph_particle.h); PAIRS 0: one limit
+      const int tj = type[j];
+      const double lim_up = PAIRS ? up[ti + tj] * (1.0 - 1.0e-10) : up0;
+      const double lim_down = ABS ? (PAIRS ? down[ti + tj] * (1.0 + 1.0e-10) : down0) : 0.0;
+      double du[3];
+      if (TLSPH::bond_breaks<DIM, ABS>(xi, xj, x0i, x0j, lim_up, lim_down,
+                                       MIN(sc[type[i]], sc[tj]), du)) {
+        bonds->state[i][lean.k[s + m]] = FixTLSPHBonds::BROKEN;
+        nbroken_local++;
+        // move the bond behind the intact ones (it stays in the segment:
+        // the 'setup' policy keeps it in the correction); the bond moved
+        // into slot m is examined next
+        if (!rebuild)
+          for (int d = 0; d < DIM; d++) sumg[i][d] -= bg[DIM * m + d];
+        // keep the leading bonds first (pair_tlsph.h: nlead)
+        TLSPH::drop_bond<DIM>(bj, bg, lean.w + 2 * (bigint) s, lean.k + s, m, nlead[i], n);
+        changed = true;
+        continue;
       }
       const double *g = bg + DIM * m;
       for (int r = 0; r < DIM; r++)

@@ -162,6 +162,38 @@ TLSPH_INLINE void drop_bond(int *j, double *g, double *w, int *k, int m, int &nl
   n--;
 }
 
+/* The stretch criterion of tlsph/damage for bond i-j, from the current and
+   reference positions: writes du = (x_j - x_i) - (X_j - X_i) (DIM values,
+   what F needs) and returns true when the stretch s = (r - r0)/r0 reaches
+   s_c (ABS: |s| >= s_c). s >= s_c <=> r^2 >= r0^2 (1 + s_c)^2 (and, with
+   the absolute criterion, s <= -s_c <=> r^2 <= r0^2 (1 - s_c)^2): a cheap
+   filter without square roots against lim_up = (1 + s_c)^2 (1 - 1e-10) and
+   lim_down = (1 - s_c)^2 (1 + 1e-10); only bonds within round-off of the
+   limit or beyond it are decided with the stretch itself. s_c: the smaller
+   critical stretch of the two particles' materials. (CPU pass and Kokkos
+   kernel of tlsph/damage.) */
+template <int DIM, int ABS>
+TLSPH_INLINE bool bond_breaks(const double *xi, const double *xj, const double *x0i,
+                              const double *x0j, double lim_up, double lim_down, double s_c,
+                              double *du)
+{
+  double r2 = 0.0, r02 = 0.0;
+  for (int d = 0; d < DIM; d++) {
+    const double dx = xj[d] - xi[d];
+    const double X = x0j[d] - x0i[d];
+    du[d] = dx - X;
+    r2 += dx * dx;
+    r02 += X * X;
+  }
+  bool suspect = r2 >= r02 * lim_up;
+  if (ABS) suspect = suspect || r2 <= r02 * lim_down;
+  if (!suspect) return false;
+  const double r0 = std::sqrt(r02);
+  double st = (std::sqrt(r2) - r0) / r0;
+  if (ABS) st = std::fabs(st);
+  return st >= s_c;
+}
+
 // the polynomial basis of the corrected gradient
 template <int DIM, int ORDER> struct Basis {
   static constexpr int size = (ORDER == 1) ? DIM : (DIM == 2 ? 5 : 9);

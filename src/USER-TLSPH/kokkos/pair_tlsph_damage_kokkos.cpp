@@ -116,30 +116,18 @@ int PairTLSPHDamageKokkos<DeviceType>::break_kernel()
           const int j = bj_[m];
           const int tj = type(j);
           const double *xj = x(j), *x0j = x0c + 3 * j;
-          double du[3], r2 = 0.0, r02 = 0.0;
-          for (int d = 0; d < DIM; d++) {
-            const double dx = xj[d] - xi[d];
-            const double X = x0j[d] - x0i[d];
-            du[d] = dx - X;
-            r2 += dx * dx;
-            r02 += X * X;
-          }
           const double lim_up = PAIRS ? up[ti * ntp + tj] * (1.0 - 1.0e-10) : up0;
-          bool suspect = r2 >= r02 * lim_up;
-          if (ABS)
-            suspect = suspect || r2 <= r02 * (PAIRS ? down[ti * ntp + tj] * (1.0 + 1.0e-10) : down0);
-          if (suspect) {
-            const double r0 = std::sqrt(r02);
-            double st = (std::sqrt(r2) - r0) / r0;
-            if (ABS) st = std::fabs(st);
-            if (st >= (sc[ti] < sc[tj] ? sc[ti] : sc[tj])) {
-              const int e = Kokkos::atomic_fetch_add(&count(), 1);
-              broken_i(e) = i;
-              broken_m(e) = m;
-              for (int d = 0; d < DIM; d++) sumg[3 * i + d] -= bg_[DIM * m + d];
-              TLSPH::drop_bond<DIM>(bj_, bg_, bw_, bk_, m, nlead_i, n);
-              continue;
-            }
+          const double lim_down =
+              ABS ? (PAIRS ? down[ti * ntp + tj] * (1.0 + 1.0e-10) : down0) : 0.0;
+          double du[3];
+          if (TLSPH::bond_breaks<DIM, ABS>(xi, xj, x0i, x0j, lim_up, lim_down,
+                                           sc[ti] < sc[tj] ? sc[ti] : sc[tj], du)) {
+            const int e = Kokkos::atomic_fetch_add(&count(), 1);
+            broken_i(e) = i;
+            broken_m(e) = m;
+            for (int d = 0; d < DIM; d++) sumg[3 * i + d] -= bg_[DIM * m + d];
+            TLSPH::drop_bond<DIM>(bj_, bg_, bw_, bk_, m, nlead_i, n);
+            continue;
           }
           const double *gm = bg_ + DIM * m;
           for (int r = 0; r < DIM; r++)
