@@ -13,6 +13,7 @@
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
+#include "pair_tlsph.h"
 #include "update.h"
 
 #include <cmath>
@@ -151,6 +152,7 @@ void FixTLSPHBonds::end_of_step()
 
 void FixTLSPHBonds::work_now(int i, double &hg, double &visc) const
 {
+  host_arrays();
   // during a step the force of this step has given one half kick; the
   // tallies hold two of it once end_of_step() has run, none before. A setup
   // force has given none: the tallies hold one of it (the first run, after
@@ -165,8 +167,15 @@ void FixTLSPHBonds::work_now(int i, double &hg, double &visc) const
       s * (f_visc[i][0] * v[i][0] + f_visc[i][1] * v[i][1] + f_visc[i][2] * v[i][2]);
 }
 
+void FixTLSPHBonds::host_arrays() const
+{
+  if (owner) owner->work_to_host();
+}
+
 void FixTLSPHBonds::tally_work(double dt)
 {
+  if (owner && owner->tally_work_device(dt)) return;
+  host_arrays();
   double **v = atom->v;
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++) {
@@ -304,6 +313,7 @@ void FixTLSPHBonds::set_frozen_size(int n)
 
 void FixTLSPHBonds::set_arrays(int i)
 {
+  host_arrays();
   // an atom created after the bonds were found has no partners
   npartner[i] = 0;
   nintact0[i] = 0;
@@ -314,6 +324,7 @@ void FixTLSPHBonds::set_arrays(int i)
 
 void FixTLSPHBonds::copy_arrays(int i, int j, int /*delflag*/)
 {
+  host_arrays();
   npartner[j] = npartner[i];
   nintact0[j] = nintact0[i];
   work_hg[j] = work_hg[i];
@@ -331,6 +342,7 @@ void FixTLSPHBonds::copy_arrays(int i, int j, int /*delflag*/)
 
 int FixTLSPHBonds::pack_exchange(int i, double *buf)
 {
+  host_arrays();
   int m = 0;
   buf[m++] = npartner[i];
   buf[m++] = nintact0[i];
@@ -346,6 +358,7 @@ int FixTLSPHBonds::pack_exchange(int i, double *buf)
 
 int FixTLSPHBonds::unpack_exchange(int nlocal, double *buf)
 {
+  host_arrays();
   int m = 0;
   npartner[nlocal] = static_cast<int>(buf[m++]);
   nintact0[nlocal] = static_cast<int>(buf[m++]);
@@ -389,6 +402,7 @@ void FixTLSPHBonds::restart(char *buf)
 
 int FixTLSPHBonds::pack_restart(int i, double *buf)
 {
+  host_arrays();
   // first value is the count of values, as LAMMPS requires
   int m = 1;
   m += pack_exchange(i, &buf[1]);
@@ -398,6 +412,7 @@ int FixTLSPHBonds::pack_restart(int i, double *buf)
 
 void FixTLSPHBonds::unpack_restart(int nlocal, int nth)
 {
+  host_arrays();
   double **extra = atom->extra;
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);

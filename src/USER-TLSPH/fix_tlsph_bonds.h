@@ -74,6 +74,7 @@ class FixTLSPHBonds : public Fix {
   void set_frozen_size(int n);
   double *work_hg;      // work done against hourglass forces, per atom
   double *work_visc;    // work dissipated by artificial viscosity, per atom
+  class PairTLSPH *owner = nullptr;    // the pair style (set in its init_style)
   double **f_hg;        // hourglass and viscous force of this step, per atom: written
   double **f_visc;      //   by pair tlsph, turned into work in end_of_step()
   int fresh;           // 1 right after the partner search (pre-cracks are applied then)
@@ -81,6 +82,8 @@ class FixTLSPHBonds : public Fix {
   bigint nbonds_total;  // all bonds (counted twice, once from each end) at setup
 
  private:
+  // the work and force arrays current on the host (a /kk pair may hold them on the device)
+  void host_arrays() const;
   int first;             // 1 until the partners have been found
   int precounted;        // 1 once the work tallies include the next half kick
   bigint tallied_step;   // step of the last tally (end_of_step or setup)

@@ -5,6 +5,7 @@
 #include "pair_tlsph.h"
 
 #include "atom.h"
+#include "atom_masks.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
@@ -549,6 +550,8 @@ void PairTLSPH::init_style()
     ifix = modify->find_fix_by_style("^TLSPH_BONDS$");
   }
   bonds = dynamic_cast<FixTLSPHBonds *>(modify->fix[ifix]);
+  bonds->owner = this;
+  bonds->datamask_read = V_MASK | MASK_MASK;    // (-k on: the host tally reads v)
   bonds->set_cutoff(2.0 * h);
   bonds->rebuild = 1;
 

@@ -76,6 +76,11 @@ class PairTLSPH : public Pair {
   // the /kk styles keep F, psi, ... on the device: the computes call this
   // before reading them (a no-op for the CPU styles)
   virtual void sync_host() {}
+  // the /kk styles keep the bond fix's work tallies on the device: the fix
+  // hands its tally to tally_work_device() (false: do it on the host) and
+  // calls work_to_host() before it touches its work or force arrays
+  virtual bool tally_work_device(double) { return false; }
+  virtual void work_to_host() {}
 
   class FixTLSPHBonds *bonds;
 

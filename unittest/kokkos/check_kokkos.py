@@ -220,16 +220,20 @@ def thermo_column(log, name):
             continue
         if cols and len(w) == len(cols):
             try:
-                vals.append(float(w[cols.index(name)]))
+                row = [float(x) for x in w]    # a thermo row: numbers only
             except ValueError:
                 cols = None
+                continue
+            vals.append(row[cols.index(name)])
+        elif cols:
+            cols = None    # the thermo block has ended
     return vals
 
 
 def case_damage(args):
     for f in ("in.damage", "in.damage_fixes", "in.damage_final", "in.damage_restart"):
         shutil.copy(os.path.join(HERE, f), args.workdir)
-    problems, finals = [], {}
+    problems, finals, energies = [], {}, {}
     runs = (("cpu_off", False, "off", 1), ("cpu_on", False, "on", 1), ("kk", True, "off", 1),
             ("kk_on", True, "on", 1), ("kk_np2", True, "off", 2))
     for tag, kk, newton, np in runs:
@@ -244,6 +248,23 @@ def case_damage(args):
             problems.append("%s: no bond broke during the run: the test does not exercise "
                             "breaking" % tag)
         finals[tag] = read_dump(os.path.join(args.workdir, tag + ".final.dump"))
+        energies[tag] = {c: thermo_column(log, c) for c in ("c_e[1]", "c_e[2]", "c_e[3]", "c_e[4]")}
+    # the energy balance every 100 steps (compute tlsph/energy: strain, hourglass
+    # and viscous work tallied by the bond fix, kinetic): /kk against the CPU
+    # style with the same newton setting
+    for kk, cpu in (("kk", "cpu_off"), ("kk_on", "cpu_on")):
+        if kk not in energies or cpu not in energies:
+            continue
+        for c, ref in energies[cpu].items():
+            got = energies[kk][c]
+            scale = max(abs(x) for x in ref) if ref else 0.0
+            diff = max((abs(a - b) for a, b in zip(ref, got)), default=math.inf)
+            rel = diff / scale if scale > 0 else diff
+            ok = len(ref) == len(got) and len(ref) > 1 and rel <= TOL
+            print("%-10s vs %-10s %-8s (%d thermo rows) max|diff| %.3e of %.3e: %.2e %s"
+                  % (kk, cpu, c, len(ref), diff, scale, rel, "ok" if ok else "FAIL"))
+            if not ok:
+                problems.append("%s vs %s: %s differs by %.3g" % (kk, cpu, c, rel))
     # restarts mid-crack, across the variants (all with newton off)
     for writer in ("cpu", "kk"):
         _, prob = lmp_run(args, "first_" + writer, "in.damage",

@@ -51,6 +51,8 @@ PairTLSPHKokkosT<DeviceType, Base>::PairTLSPHKokkosT(LAMMPS *lmp) : Base(lmp)
   host_current = 0;
   host_step = -1;
   uploaded_version = -1;
+  work_device = false;
+  forces_on_host = true;
 }
 
 
@@ -69,6 +71,9 @@ void PairTLSPHKokkosT<DeviceType, Base>::init_style()
   // stores on Serial, per-thread copies on OpenMP, atomics on a GPU); the
   // base class has set gather_rows and comm_forward accordingly
   kk_nmax = 0;    // row sizes may have changed: reallocate the device views
+  // the bond fix's per-step tally runs on the device (tally_work_device):
+  // LAMMPS need not copy v to the host for it
+  bonds->datamask_read = EMPTY_MASK;
 
   // restart files name the pair style by force->pair_style: give it the CPU
   // style's name (as newer LAMMPS versions do with every suffix), so that a
@@ -434,15 +439,58 @@ void PairTLSPHKokkosT<DeviceType, Base>::compute(int eflag, int vflag)
     else dispatch_force<3, 2>(hg, visc, vir, virial);
   }
 
-  // the bond fix tallies the work of the hourglass and viscous forces on the
-  // host at the end of the step
-  const int nlocal = atom->nlocal;
-  download(bonds->f_hg[0], d_fhg, 0, (size_t) 3 * nlocal);
-  download(bonds->f_visc[0], d_fvisc, 0, (size_t) 3 * nlocal);
+  // the hourglass and viscous forces stay on the device: the bond fix's
+  // work tallies use them there (tally_work_device)
+  forces_on_host = false;
 
   if (eflag_either) {
     sync_host();
     this->tally_energy();
+  }
+}
+
+/* the bond fix's work tallies (FixTLSPHBonds::tally_work) on the device:
+   w -= dt f . v for the hourglass and the viscous force of every local
+   particle, the same expression; the fix's host arrays are copied up first
+   when they are the current ones (after an exchange, a restart, ...) */
+template <class DeviceType, class Base>
+bool PairTLSPHKokkosT<DeviceType, Base>::tally_work_device(double dt)
+{
+  const int nlocal = atom->nlocal;
+  if (!work_device) {
+    upload(d_whg, bonds->work_hg, nlocal, "tlsph/kk:work_hg");
+    upload(d_wvisc, bonds->work_visc, nlocal, "tlsph/kk:work_visc");
+    work_device = true;
+  }
+  atomKK->sync(execution_space, V_MASK);
+  const auto v = atomKK->k_v.template view<DeviceType>();
+  const double *fhg = d_fhg.data(), *fvisc = d_fvisc.data();
+  double *whg = d_whg.data(), *wvisc = d_wvisc.data();
+  Kokkos::parallel_for(
+      "tlsph/kk:tally_work", Kokkos::RangePolicy<DeviceType>(0, nlocal),
+      KOKKOS_LAMBDA(const int i) {
+        whg[i] -= dt * (fhg[3 * i] * v(i, 0) + fhg[3 * i + 1] * v(i, 1) + fhg[3 * i + 2] * v(i, 2));
+        wvisc[i] -=
+            dt * (fvisc[3 * i] * v(i, 0) + fvisc[3 * i + 1] * v(i, 1) + fvisc[3 * i + 2] * v(i, 2));
+      });
+  return true;
+}
+
+/* the bond fix's work tallies and this step's hourglass and viscous forces
+   to its host arrays (before it reads or moves them) */
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::work_to_host()
+{
+  const int nlocal = atom->nlocal;
+  if (work_device) {
+    download(bonds->work_hg, d_whg, 0, nlocal);
+    download(bonds->work_visc, d_wvisc, 0, nlocal);
+    work_device = false;
+  }
+  if (!forces_on_host && d_fhg.extent(0) >= (size_t) 3 * nlocal) {
+    download(bonds->f_hg[0], d_fhg, 0, (size_t) 3 * nlocal);
+    download(bonds->f_visc[0], d_fvisc, 0, (size_t) 3 * nlocal);
+    forces_on_host = true;
   }
 }
 
@@ -526,7 +574,7 @@ double PairTLSPHKokkosT<DeviceType, Base>::memory_usage()
 {
   double bytes = Base::memory_usage();
   for (const dview *v : {&d_Q, &d_sumg, &d_F, &d_P, &d_fown, &d_pk, &d_psi, &d_ehg, &d_x0c,
-                         &d_fhg, &d_fvisc, &d_bg, &d_bw})
+                         &d_fhg, &d_fvisc, &d_bg, &d_bw, &d_whg, &d_wvisc})
     bytes += sizeof(double) * v->extent(0);
   for (const iview *v : {&d_nbond, &d_nlead, &d_start, &d_bj, &d_bk}) bytes += sizeof(int) * v->extent(0);
   return bytes;

@@ -77,6 +77,8 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   void compute(int, int) override;
   void init_style() override;
   void sync_host() override;
+  bool tally_work_device(double dt) override;
+  void work_to_host() override;
 
   int pack_forward_comm_kokkos(int, DAT::tdual_int_2d, int, DAT::tdual_xfloat_1d &, int,
                                int *) override;
@@ -146,6 +148,9 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   Kokkos::View<Material *, DeviceType> d_mat;
   Kokkos::View<TLSPH::PairMaterial *, DeviceType> d_pm;
   int uploaded_version;    // cache_version of the bond cache on the device
+  dview d_whg, d_wvisc;    // the bond fix's work tallies while work_device is set
+  bool work_device;        // the tallies live on the device (the fix's host copy is stale)
+  bool forces_on_host;     // the fix's host f_hg, f_visc hold this step's forces
   int host_current;        // 1: the host arrays F, psi, ehg hold this step's values
   bigint host_step;
   void grow_device();
