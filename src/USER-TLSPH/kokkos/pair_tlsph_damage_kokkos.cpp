@@ -73,10 +73,8 @@ int PairTLSPHDamageKokkos<DeviceType>::break_kernel()
 {
   using TLSPH::StridedRows;
   const int nlocal = this->atom->nlocal;
-  auto *avec = static_cast<AtomVecPeriKokkos *>(this->atom->avec);
   const StridedRows x{this->atomKK->k_x.template view<DeviceType>().data(), 3};
   const TLSPH::TypeArray type{this->atomKK->k_type.template view<DeviceType>().data()};
-  const double *vfrac = avec->k_vfrac.template view<DeviceType>().data();
   const int *start = this->d_start.data();
   int *nb = this->d_nbond.data(), *nl = this->d_nlead.data(), *bj = this->d_bj.data(),
       *bk = this->d_bk.data();
@@ -91,8 +89,7 @@ int PairTLSPHDamageKokkos<DeviceType>::break_kernel()
   const double up0 = this->stretch_up[ntp + 1] * (1.0 - 1.0e-10);
   const double down0 = this->stretch_down[ntp + 1] * (1.0 + 1.0e-10);
   const int qs = this->correction_size(), ps = this->packed_size(), pstress = this->plane_stress;
-  const int ord = this->order;
-  const TLSPH::CubicSpline kern = this->kernel;
+  const typename KK::DeviceCache dc = this->device_cache();
   const bool need_K = this->viscosity_active(), cons = (this->hg_form == 2 && this->gamma != 0.0);
   const double g = this->gamma, alpha0 = this->alpha;
   const bool with_R = this->gather_rows;
@@ -141,9 +138,8 @@ int PairTLSPHDamageKokkos<DeviceType>::break_kernel()
         for (int r = 0; r < DIM; r++)
           for (int c = 0; c < DIM; c++) Fi[3 * r + c] += Fa[DIM * r + c];
         // the stress row, as in tlsph/kk's deformation kernel
-        const double Vi = vfrac[i];
-        const TLSPH::LeanBonds<DIM, StridedRows> b{
-            bj + s, bg + DIM * s, bw + 2 * s, StridedRows{x0c, 3}, x0c + 3 * i, kern, Vi, ord};
+        const auto b = dc.template bonds<DIM>(i);
+        const double Vi = b.Vi;
         const TLSPH::HourglassWeights<decltype(b), TLSPH::TypeArray> coeff(pm, type, b, g, i, Vi);
         double J;
         psi[i] = PairTLSPH::stress_row<DIM, ORDER, LAWS>(

@@ -140,6 +140,21 @@ void PairTLSPHKokkosT<DeviceType, Base>::upload_bond_cache()
   uploaded_version = cache_version;
 }
 
+template <class DeviceType, class Base>
+typename PairTLSPHKokkosT<DeviceType, Base>::DeviceCache
+PairTLSPHKokkosT<DeviceType, Base>::device_cache() const
+{
+  const auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
+  return DeviceCache{d_start.data(),
+                     d_bj.data(),
+                     d_bg.data(),
+                     d_bw.data(),
+                     d_x0c.data(),
+                     avec->k_vfrac.template view<DeviceType>().data(),
+                     kernel,
+                     order};
+}
+
 /* pass (1) of tlsph/kk: the deformation kernel for the dimension, gradient
    order and laws of the scene */
 template <class DeviceType, class Base>
@@ -164,19 +179,16 @@ int PairTLSPHKokkosT<DeviceType, Base>::deformation_kernel()
 {
   using TLSPH::StridedRows;
   const int nlocal = atom->nlocal;
-  auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
   const StridedRows x{atomKK->k_x.template view<DeviceType>().data(), 3};
   const TLSPH::TypeArray type{atomKK->k_type.template view<DeviceType>().data()};
-  const double *vfrac = avec->k_vfrac.template view<DeviceType>().data();
-  const int *start = d_start.data(), *nb = d_nbond.data(), *bj = d_bj.data();
-  const double *bg = d_bg.data(), *bw = d_bw.data(), *x0c = d_x0c.data();
+  const DeviceCache dc = device_cache();
+  const int *nb = d_nbond.data();
   const double *Q = d_Q.data(), *sumg = d_sumg.data();
   double *F = d_F.data(), *P = d_P.data(), *pk = d_pk.data(), *fown = d_fown.data();
   double *psi = d_psi.data(), *ehg = d_ehg.data();
   const Material *mt = d_mat.data();
   const TLSPH::PairMaterial *pm = d_pm.data();
-  const int qs = correction_size(), ps = packed_size(), pstress = plane_stress, ord = order;
-  const TLSPH::CubicSpline kern = kernel;
+  const int qs = correction_size(), ps = packed_size(), pstress = plane_stress;
   const bool need_K = this->viscosity_active(), cons = (hg_form == 2 && gamma != 0.0);
   const bool with_R = gather_rows;
   const double g = gamma, alpha0 = alpha;
@@ -185,10 +197,8 @@ int PairTLSPHKokkosT<DeviceType, Base>::deformation_kernel()
   Kokkos::parallel_reduce(
       "tlsph/kk:deformation", Kokkos::RangePolicy<DeviceType>(0, nlocal),
       KOKKOS_LAMBDA(const int i, int &first) {
-        const int s = start[i];
-        const double Vi = vfrac[i];
-        const TLSPH::LeanBonds<DIM, StridedRows> b{
-            bj + s, bg + DIM * s, bw + 2 * s, StridedRows{x0c, 3}, x0c + 3 * i, kern, Vi, ord};
+        const auto b = dc.template bonds<DIM>(i);
+        const double Vi = b.Vi;
         double *Fi = F + 9 * i;
         TLSPH::deformation_gradient_bonds<DIM>(x, i, b, nb[i], Fi);
         const TLSPH::HourglassWeights<decltype(b), TLSPH::TypeArray> coeff(pm, type, b, g, i, Vi);
@@ -214,30 +224,24 @@ void PairTLSPHKokkosT<DeviceType, Base>::force_kernel(double *vir)
 {
   using TLSPH::StridedRows;
   const int nlocal = atom->nlocal;
-  auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
   const StridedRows x{atomKK->k_x.template view<DeviceType>().data(), 3};
   const StridedRows v{atomKK->k_v.template view<DeviceType>().data(), 3};
   double *f = atomKK->k_f.template view<DeviceType>().data();
   const TLSPH::TypeArray type{atomKK->k_type.template view<DeviceType>().data()};
-  const double *vfrac = avec->k_vfrac.template view<DeviceType>().data();
-  const int *start = d_start.data(), *nb = d_nbond.data(), *bj = d_bj.data();
-  const double *bg = d_bg.data(), *bw = d_bw.data(), *x0c = d_x0c.data();
+  const DeviceCache dc = device_cache();
+  const int *nb = d_nbond.data();
   const double *P = d_P.data(), *fown = d_fown.data();
   const StridedRows pkr{d_pk.data(), packed_size()};
   double *fhg = d_fhg.data(), *fvisc = d_fvisc.data();
   const TLSPH::PairMaterial *pm = d_pm.data();
-  const TLSPH::CubicSpline kern = kernel;
-  const int ord = order;
   const double hh = h, bb = beta, gg = gamma;
 
   EV_FLOAT ev;
   Kokkos::parallel_reduce(
       "tlsph/kk:forces", Kokkos::RangePolicy<DeviceType>(0, nlocal),
       KOKKOS_LAMBDA(const int i, EV_FLOAT &acc) {
-        const int s = start[i];
-        const double Vi = vfrac[i];
-        const TLSPH::LeanBonds<DIM, StridedRows> b{
-            bj + s, bg + DIM * s, bw + 2 * s, StridedRows{x0c, 3}, x0c + 3 * i, kern, Vi, ord};
+        const auto b = dc.template bonds<DIM>(i);
+        const double Vi = b.Vi;
         double fs[3] = {fown[3 * i], fown[3 * i + 1], fown[3 * i + 2]};
         double fv[3] = {0.0, 0.0, 0.0}, fh[3] = {0.0, 0.0, 0.0};
         const TLSPH::VirialTally tally{acc.v};
@@ -306,20 +310,15 @@ void PairTLSPHKokkosT<DeviceType, Base>::force_kernel_scatter(double *vir)
   using TLSPH::StridedRows;
   namespace KE = Kokkos::Experimental;
   const int nlocal = atom->nlocal;
-  auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
   const StridedRows x{atomKK->k_x.template view<DeviceType>().data(), 3};
   const StridedRows v{atomKK->k_v.template view<DeviceType>().data(), 3};
   auto f = atomKK->k_f.template view<DeviceType>();
   const TLSPH::TypeArray type{atomKK->k_type.template view<DeviceType>().data()};
-  const double *vfrac = avec->k_vfrac.template view<DeviceType>().data();
-  const int *start = d_start.data(), *nb = d_nbond.data(), *nl = d_nlead.data(),
-            *bj = d_bj.data();
-  const double *bg = d_bg.data(), *bw = d_bw.data(), *x0c = d_x0c.data();
+  const DeviceCache dc = device_cache();
+  const int *nb = d_nbond.data(), *nl = d_nlead.data();
   const double *P = d_P.data(), *fown = d_fown.data();
   const StridedRows pkr{d_pk.data(), packed_size()};
   const TLSPH::PairMaterial *pm = d_pm.data();
-  const TLSPH::CubicSpline kern = kernel;
-  const int ord = order;
   const double hh = h, bb = beta, gg = gamma;
   // the tallies are sums (partners add their share): zero them first
   auto fhg = Kokkos::subview(d_fhg, std::make_pair(0, 3 * nlocal));
@@ -337,10 +336,8 @@ void PairTLSPHKokkosT<DeviceType, Base>::force_kernel_scatter(double *vir)
         auto af = sf.access();
         auto ahg = shg.access();
         auto avisc = svisc.access();
-        const int s = start[i];
-        const double Vi = vfrac[i];
-        const TLSPH::LeanBonds<DIM, StridedRows> b{
-            bj + s, bg + DIM * s, bw + 2 * s, StridedRows{x0c, 3}, x0c + 3 * i, kern, Vi, ord};
+        const auto b = dc.template bonds<DIM>(i);
+        const double Vi = b.Vi;
         double fs[3] = {fown[3 * i], fown[3 * i + 1], fown[3 * i + 2]};
         double fv[3] = {0.0, 0.0, 0.0}, fh[3] = {0.0, 0.0, 0.0};
         const TLSPH::VirialTally tally{acc.v};
@@ -503,7 +500,6 @@ void PairTLSPHKokkosT<DeviceType, Base>::sync_host()
   if (kk_nmax == 0 || d_F.extent(0) == 0) return;    // no force call yet
   const int nlocal = atom->nlocal;
   download(F[0], d_F, 0, (size_t) 9 * nlocal);
-  download(P[0], d_P, 0, (size_t) 9 * nlocal);
   download(psi, d_psi, 0, nlocal);
   download(ehg, d_ehg, 0, nlocal);
   host_current = 1;

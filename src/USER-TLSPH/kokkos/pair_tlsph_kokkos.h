@@ -87,6 +87,23 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   void unpack_forward_comm(int, int, double *) override;
   double memory_usage() override;
 
+  // what every kernel reads of the bond cache, by value in the kernels:
+  // bonds<DIM>(i) is particle i's view of its bonds (pair_tlsph.h: bonds_of)
+  struct DeviceCache {
+    const int *start, *bj;
+    const double *bg, *bw, *x0c, *vfrac;
+    TLSPH::CubicSpline kernel;
+    int order;
+    template <int DIM> KOKKOS_INLINE_FUNCTION TLSPH::LeanBonds<DIM, TLSPH::StridedRows> bonds(int i) const
+    {
+      const int s = start[i];
+      return TLSPH::LeanBonds<DIM, TLSPH::StridedRows>{
+          bj + s, bg + DIM * s, bw + 2 * s, TLSPH::StridedRows{x0c, 3}, x0c + 3 * i, kernel,
+          vfrac[i], order};
+    }
+  };
+  DeviceCache device_cache() const;
+
   // the kernels (public: device lambdas may not live in private members)
   template <int DIM, int ORDER, int LAWS> int deformation_kernel();
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void force_kernel(double *vir);
