@@ -166,27 +166,11 @@ if [ "$VARIANT" = kokkos-cuda ] || [ "$VARIANT" = kokkos-omp ]; then
     flock 8
   fi
   if [ -z "$(trilinos_orig)" ]; then
-    APT_PRIV="$CACHE/apt"
-    APT_OPTS=(-o "Dir::Etc::SourceList=$APT_PRIV/sources.list"
-              -o "Dir::Etc::SourceParts=$APT_PRIV/sources.list.d"
-              -o "Dir::State::Lists=$APT_PRIV/lists"
-              -o "Dir::Cache::Archives=$APT_PRIV/archives"
-              -o "Dir::Cache::pkgcache=" -o "Dir::Cache::srcpkgcache=")
-    [ "$(id -u)" -ne 0 ] || APT_OPTS+=(-o "APT::Sandbox::User=root")
-    have_trilinos() {     # (no pipe into grep -q: SIGPIPE under pipefail)
-      local idx
-      idx=$(apt-cache "${APT_OPTS[@]}" showsrc trilinos 2>/dev/null || true)
-      grep -qxF "Version: $TRILINOS_VER" <<<"$idx"
-    }
-    if ! have_trilinos; then
-      log "updating the private deb-src list ($APT_PRIV) through setup.sh --check-source"
-      bash "$HERE/setup.sh" --check-source >&2
-    fi
-    have_trilinos || die "no Debian source package trilinos $TRILINOS_VER through $APT_PRIV"
     log "downloading the Debian source of trilinos $TRILINOS_VER (166 MB, once) into $TRILINOS_DIR"
     tmp=$(mktemp -d "$CACHE/.trilinos-$TRILINOS_VER.XXXXXX")
-    ( cd "$tmp" && apt-get "${APT_OPTS[@]}" source -q --download-only "trilinos=$TRILINOS_VER" >&2 ) ||
-      { rm -rf "$tmp"; die "apt-get source trilinos=$TRILINOS_VER failed"; }
+    # through setup.sh's private deb-src list, as for the LAMMPS source
+    bash "$HERE/setup.sh" --download-source trilinos "$TRILINOS_VER" "$tmp" >&2 ||
+      { rm -rf "$tmp"; die "no Debian source of trilinos $TRILINOS_VER (setup.sh --download-source)"; }
     rm -rf "$TRILINOS_DIR"
     mv "$tmp" "$TRILINOS_DIR"
     [ -n "$(trilinos_orig)" ] || die "no trilinos_*.orig.tar.* in $TRILINOS_DIR"

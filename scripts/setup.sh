@@ -105,10 +105,11 @@ private_apt() {
   log "apt-get update of a private deb-src list ($APT_PRIV)"
   "${SUDO[@]}" apt-get "${APT_OPTS[@]}" update -q >&2
 }
+# have_src [PKG VERSION]: the source package (default: LAMMPS's) is known to apt
 have_src() {
-  local idx
-  idx=$(apt-cache "${APT_OPTS[@]}" showsrc "$SRC_PKG" 2>/dev/null || true)
-  grep -qxF "Version: $SRC_VER" <<<"$idx"
+  local idx pkg=${1:-$SRC_PKG} ver=${2:-$SRC_VER}
+  idx=$(apt-cache "${APT_OPTS[@]}" showsrc "$pkg" 2>/dev/null || true)
+  grep -qxF "Version: $ver" <<<"$idx"
 }
 
 old_entry=/etc/apt/sources.list.d/tlsph-deb-src.sources
@@ -123,6 +124,17 @@ if [ "${1:-}" = "--check-source" ]; then
   private_apt
   have_src || die "no Debian source package $SRC_PKG $SRC_VER through the private deb-src list"
   log "found $SRC_PKG $SRC_VER through $APT_PRIV"
+  exit 0
+fi
+
+# --download-source PKG VERSION DIR: download (not unpack) another Debian
+# source package into DIR the same way (build-lammps-plugin.sh: trilinos, the
+# Kokkos source of the kokkos-cuda and kokkos-omp builds)
+if [ "${1:-}" = "--download-source" ]; then
+  [ $# -eq 4 ] || die "usage: setup.sh --download-source PKG VERSION DIR"
+  have_src "$2" "$3" || private_apt
+  have_src "$2" "$3" || die "no Debian source package $2 $3 in the apt sources (deb-src)"
+  ( cd "$4" && apt-get "${APT_OPTS[@]}" source -q --download-only "$2=$3" >&2 )
   exit 0
 fi
 
