@@ -16,6 +16,20 @@
 #   h2         -var hdx 2.0 (the crack-branching example's branching setting)
 #   gamma1     -var gamma 1.0 (hourglass control on in both)
 #   conservative  -var gamma 1.0 -var hg conservative
+#   family4    -var famdx 4: pair_style tlsph/damage family 4 dx (bond family
+#              of 4 spacings for the damage, s_c from Gc with horizon 2 dx;
+#              forces with h = 1.33 dx)
+#   common     one coefficient set for both decks, each value a thesis value
+#              of one of them: alpha 0.09, filter 0.65 0.1, gamma 0 (Kalthoff),
+#              alpha_d 0.4 (crack branching); h = 1.33 dx
+#   linear     kcoef with 'damping linear' (alpha_i grows with phi')
+#   load2      a diagnostic, not a model setting: the glass plate at 2 MPa
+#              instead of the benchmark's 1 MPa (thesis coefficients)
+#   scan-A-AD-PHIC-EPS-G  alpha A, alpha_d AD, filter PHIC EPS, gamma G in
+#              both decks (the coefficient scan: run it at one dx per deck,
+#              KDX=1.0 BDX=0.5)
+#   kcoef      one coefficient set for both decks: the Kalthoff deck's
+#              (alpha 0.09, alpha_d 3.1, gamma 0, filter 0.65 0.1), h = 1.33 dx
 # Runs are resumable: a finished case (its log ends with the wall time) is
 # kept unless FORCE=1. Wall time: the 0.5 mm Kalthoff case is 80,000
 # particles (about 15 min on a free core), the 0.333 mm plate 36,000 (3-5 min).
@@ -37,7 +51,16 @@ vars_of() {
     h2) echo "-var hdx 2.0" ;;
     gamma1) echo "-var gamma 1.0" ;;
     conservative) echo "-var gamma 1.0 -var hg conservative" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis h2 gamma1 conservative)" >&2
+    family4) echo "-var famdx 4" ;;
+    common) echo "-var alpha 0.09 -var alpha_d 0.4 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    kcoef) echo "-var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    linear) echo "-var damping linear -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    load2) echo "-var sigma0 2.0e6" ;;
+    scan-*)    # scan-ALPHA-ALPHAD-PHIC-EPS-GAMMA
+      local a
+      IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
+      echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis h2 gamma1 conservative family4 common kcoef linear load2 scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }

@@ -27,6 +27,8 @@ PairTLSPHDamage::PairTLSPHDamage(LAMMPS *lmp) : PairTLSPH(lmp)
   alpha_d = 1.0;
   absolute = 0;
   rebuild = 0;
+  family = 0.0;
+  damping_linear = 0;
   nmax_d = 0;
   phi = phis = alphas = nullptr;
   comm_stage = 0;
@@ -43,7 +45,7 @@ PairTLSPHDamage::~PairTLSPHDamage()
 
 /* ----------------------------------------------------------------------
    pair_style tlsph/damage (keywords of tlsph) [alpha_d A] [criterion tension|absolute]
-     [correction rebuild|setup] [precrack x1 y1 x2 y2 | x1 y1 z1 x2 y2 z2 x3 y3 z3] ...
+     [correction rebuild|setup] [family R] [damping step|linear] [precrack x1 y1 x2 y2 | x1 y1 z1 x2 y2 z2 x3 y3 z3] ...
 ------------------------------------------------------------------------- */
 
 void PairTLSPHDamage::settings(int narg, char **arg)
@@ -52,6 +54,8 @@ void PairTLSPHDamage::settings(int narg, char **arg)
   bool have_alpha_d = false, have_gradient = false;
   double alpha_d_value = 0.0;
   absolute = 0;
+  family = 0.0;
+  damping_linear = 0;
   rebuild = 0;    // 'setup' (the thesis): measured better on Kalthoff-Winkler, see doc
   cracks.clear();
   const int d = domain->dimension;
@@ -81,6 +85,23 @@ void PairTLSPHDamage::settings(int narg, char **arg)
         error->all(FLERR, "pair_style tlsph/damage: correction must be 'rebuild' or 'setup', "
                           "got '{}'", arg[iarg + 1]);
       iarg += 2;
+    } else if (key == "damping") {
+      if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: damping needs a value");
+      if (strcmp(arg[iarg + 1], "step") == 0) damping_linear = 0;
+      else if (strcmp(arg[iarg + 1], "linear") == 0) damping_linear = 1;
+      else
+        error->all(FLERR, "pair_style tlsph/damage: damping must be 'step' or 'linear', got '{}'",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "family") {
+      if (iarg + 1 >= narg)
+        error->all(FLERR, "pair_style tlsph/damage: family needs a value (the radius of the bond "
+                          "family, a length >= 2h)");
+      family = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
+      if (!(family > 0.0))
+        error->all(FLERR, "pair_style tlsph/damage: family must be > 0 (a length >= 2h), got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
     } else if (key == "precrack") {
       const int nval = (d == 2) ? 4 : 9;
       // too few numbers, also when another keyword follows (it would
@@ -106,6 +127,11 @@ void PairTLSPHDamage::settings(int narg, char **arg)
   // the thesis's fracture model uses the linear correction: keep it the default
   if (!have_gradient) order = 1;
   alpha_d = have_alpha_d ? alpha_d_value : alpha;
+  // the family reaches at least the kernel support: the force bonds are part of it
+  if (family > 0.0 && family < 2.0 * h * (1.0 - 1.0e-12))
+    error->all(FLERR, "pair_style tlsph/damage: family {} is shorter than the kernel support 2h = "
+                      "{}: it must be >= 2h (the bonds that carry forces are part of the family)",
+               family, 2.0 * h);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -171,20 +197,23 @@ void PairTLSPHDamage::read_material_extra(FILE *fp, int type)
 void PairTLSPHDamage::write_restart_settings(FILE *fp)
 {
   PairTLSPH::write_restart_settings(fp);
-  double v[4] = {alpha_d, (double) absolute, (double) rebuild, (double) cracks.size()};
-  fwrite(v, sizeof(double), 4, fp);
+  double v[6] = {alpha_d, (double) absolute, (double) rebuild, (double) cracks.size(), family,
+                 (double) damping_linear};
+  fwrite(v, sizeof(double), 6, fp);
   for (const auto &c : cracks) fwrite(c.data(), sizeof(double), 9, fp);
 }
 
 void PairTLSPHDamage::read_restart_settings(FILE *fp)
 {
   PairTLSPH::read_restart_settings(fp);
-  double v[4];
-  if (comm->me == 0) utils::sfread(FLERR, v, sizeof(double), 4, fp, nullptr, error);
-  MPI_Bcast(v, 4, MPI_DOUBLE, 0, world);
+  double v[6];
+  if (comm->me == 0) utils::sfread(FLERR, v, sizeof(double), 6, fp, nullptr, error);
+  MPI_Bcast(v, 6, MPI_DOUBLE, 0, world);
   alpha_d = v[0];
   absolute = static_cast<int>(v[1]);
   rebuild = static_cast<int>(v[2]);
+  family = v[4];
+  damping_linear = static_cast<int>(v[5]);
   cracks.assign(static_cast<int>(v[3]), std::array<double, 9>{});
   for (auto &c : cracks) {
     if (comm->me == 0) utils::sfread(FLERR, c.data(), sizeof(double), 9, fp, nullptr, error);
@@ -200,23 +229,32 @@ void PairTLSPHDamage::init_style()
   PairTLSPH::init_style();
   // 'setup': each particle's correction is frozen once, after the pre-cracks
   bonds->set_frozen_size(rebuild ? 0 : correction_size());
-  // critical stretch per type (thesis Eq. 2.28, horizon = h; K = lambda + 2 mu / 3)
+  // the bond family: every partner within 'family' of the reference
+  // position (default: the kernel support 2h). Bonds beyond 2h have W = 0
+  // and a zero gradient: they carry no force and enter no kernel sum; they
+  // only break (stretch criterion) and count in phi, as peridynamic bonds.
+  const double radius = family_radius();
+  bonds->set_cutoff(radius);
+  // critical stretch per type (thesis Eq. 2.28 with its horizon h for a
+  // family of radius 2h; a wider family keeps that ratio: horizon = radius/2;
+  // K = lambda + 2 mu / 3)
+  const double horizon = 0.5 * radius;
   for (int t = 1; t <= atom->ntypes; t++) {
     if (mat[t].rho <= 0.0) continue;
     if (sc_given[t] > 0.0) sc[t] = sc_given[t];
     else {
       // isotropic only: check_material refuses Gc for an orthotropic type
       const double K = mat[t].lambda + 2.0 * mat[t].mu / 3.0;
-      sc[t] = critical_stretch(Gc[t], mat[t].mu, K, h, dim);
+      sc[t] = critical_stretch(Gc[t], mat[t].mu, K, horizon, dim);
       if (!(std::isfinite(sc[t]) && sc[t] > 0.0))
         error->all(FLERR, "pair tlsph/damage: type {}: the critical stretch from Gc = {} (E = {}, "
                           "nu = {}, horizon h = {}) is {}: it must be finite and > 0 (give sc "
                           "instead, or values of usual magnitudes)", t, Gc[t], mat[t].E, mat[t].nu,
-                   h, sc[t]);
+                   horizon, sc[t]);
     }
     if (comm->me == 0)
       utils::logmesg(lmp, "pair tlsph/damage: type {} critical stretch s_c = {:.6g}{}\n", t, sc[t],
-                     sc_given[t] > 0.0 ? " (given)" : " (from Gc, horizon h)");
+                     sc_given[t] > 0.0 ? " (given)" : fmt::format(" (from Gc, horizon {:.6g})", horizon));
   }
   // squared stretch limits per type pair (the bond uses the smaller s_c)
   const int ntp = atom->ntypes + 1;
@@ -231,6 +269,12 @@ void PairTLSPHDamage::init_style()
   comm_forward = MAX(comm_forward, 1);
   comm_reverse = MAX(comm_reverse, 1);
   nmax_d = 0;
+}
+
+// the neighbor list (and ghost cutoff) reaches the whole bond family
+double PairTLSPHDamage::init_one(int i, int j)
+{
+  return MAX(PairTLSPH::init_one(i, j), family_radius() * cutfactor);
 }
 
 void PairTLSPHDamage::grow_damage()
@@ -265,8 +309,18 @@ bool PairTLSPHDamage::crosses_crack(const double *A, const double *B) const
       auto orient = [](const double *a, const double *b, const double *p) {
         return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
       };
-      const double o1 = orient(P, R, A), o2 = orient(P, R, B);
-      const double o3 = orient(A, B, P), o4 = orient(A, B, R);
+      // orientations within round-off of 0 count as 0 (tol: relative to
+      // |AB| |PR|): a bond through an end point of the segment is cut, one
+      // from a particle on the segment's line is not -- decided alike
+      // whatever the last bits of the coordinates (on a lattice, the bonds
+      // through a notch tip on a line between columns would otherwise be
+      // cut or kept by round-off)
+      const double lab = std::hypot(B[0] - A[0], B[1] - A[1]);
+      const double lpr = std::hypot(R[0] - P[0], R[1] - P[1]);
+      const double tol = 1.0e-9 * lab * lpr;
+      auto snap = [tol](double o) { return std::fabs(o) < tol ? 0.0 : o; };
+      const double o1 = snap(orient(P, R, A)), o2 = snap(orient(P, R, B));
+      const double o3 = snap(orient(A, B, P)), o4 = snap(orient(A, B, R));
       if (o1 * o2 < 0.0 && o3 * o4 <= 0.0) return true;
     } else {
       const double O[3] = {c[0], c[1], c[2]};
@@ -274,8 +328,14 @@ bool PairTLSPHDamage::crosses_crack(const double *A, const double *B) const
       const double W[3] = {c[6] - c[0], c[7] - c[1], c[8] - c[2]};
       const double N[3] = {U[1] * W[2] - U[2] * W[1], U[2] * W[0] - U[0] * W[2],
                            U[0] * W[1] - U[1] * W[0]};
-      const double dA = (A[0] - O[0]) * N[0] + (A[1] - O[1]) * N[1] + (A[2] - O[2]) * N[2];
-      const double dB = (B[0] - O[0]) * N[0] + (B[1] - O[1]) * N[1] + (B[2] - O[2]) * N[2];
+      double dA = (A[0] - O[0]) * N[0] + (A[1] - O[1]) * N[1] + (A[2] - O[2]) * N[2];
+      double dB = (B[0] - O[0]) * N[0] + (B[1] - O[1]) * N[1] + (B[2] - O[2]) * N[2];
+      // as in 2D: distances and edge coordinates within round-off count as
+      // on the plane / on the edge (a bond through an edge is cut)
+      const double AB[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
+      const double tol = 1.0e-9 * std::sqrt(dot3(AB, AB) * dot3(N, N));
+      if (std::fabs(dA) < tol) dA = 0.0;
+      if (std::fabs(dB) < tol) dB = 0.0;
       if (!(dA * dB < 0.0)) continue;
       const double t = dA / (dA - dB);
       double Pp[3];
@@ -286,7 +346,8 @@ bool PairTLSPHDamage::crosses_crack(const double *A, const double *B) const
       const double det = uu * ww - uw * uw;
       if (det == 0.0) continue;
       const double a = (pu * ww - pw * uw) / det, b = (pw * uu - pu * uw) / det;
-      if (a >= 0.0 && a <= 1.0 && b >= 0.0 && b <= 1.0) return true;
+      const double e = 1.0e-9;
+      if (a >= -e && a <= 1.0 + e && b >= -e && b <= 1.0 + e) return true;
     }
   }
   return false;
@@ -528,8 +589,9 @@ void PairTLSPHDamage::after_deformation()
       // +-1e-17 where it should be 0, and that would switch alpha_d on
       phis[i] = (den > 0.0) ? num / den : 0.0;
     }
-    // adaptive viscosity (thesis Eq. 2.35)
-    alphas[i] = (phis[i] > 0.0) ? alpha_d : alpha;
+    // adaptive viscosity (thesis Eq. 2.35: alpha_d wherever phi' > 0; or
+    // 'damping linear': growing with phi' from alpha to alpha_d)
+    alphas[i] = damaged_alpha(phis[i], alpha, alpha_d, damping_linear);
     pk[i][ia] = alphas[i];
   }
 }

@@ -31,6 +31,7 @@ class PairTLSPHDamage : public PairTLSPH {
   ~PairTLSPHDamage() override;
   void settings(int, char **) override;
   void init_style() override;
+  double init_one(int, int) override;
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
@@ -72,6 +73,8 @@ class PairTLSPHDamage : public PairTLSPH {
   double alpha_d;          // viscosity alpha on damaged particles (phi' > 0)
   int absolute;            // 1: |stretch| >= s_c breaks (thesis Eq. 2.27), 0: tension only
   int rebuild;             // 1: correction rebuilt from intact bonds, 0: kept from setup
+  double family;           // radius of the bond family (damage decisions, phi); 0: 2h
+  int damping_linear;      // 0: alpha_d where phi' > 0 (thesis Eq. 2.35), 1: alpha + (alpha_d - alpha) phi'
   std::vector<double> Gc, sc_given, sc;    // per type: fracture energy, given s_c, s_c used
   std::vector<double> stretch_up, stretch_down;    // per type pair: (1 +- s_c)^2
   std::vector<std::array<double, 9>> cracks;    // pre-cracks: 2D segments, 3D parallelograms
@@ -81,6 +84,7 @@ class PairTLSPHDamage : public PairTLSPH {
   int comm_stage;          // forward: 0 packed rows (base), 1 damage phi; 2: reverse, marks
   bigint nbroken_local;    // bonds broken on this rank so far (from this end)
 
+  double family_radius() const { return family > 0.0 ? family : 2.0 * h; }
   void grow_damage();
   void apply_precracks();
   bool crosses_crack(const double *A, const double *B) const;

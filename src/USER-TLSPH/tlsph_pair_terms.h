@@ -62,6 +62,15 @@ TLSPH_INLINE double critical_stretch(double G_c, double mu, double K, double del
   return std::sqrt(G_c / ((6.0 * mu / pi + 16.0 / (9.0 * pi * pi) * (K - 2.0 * mu)) * delta));
 }
 
+/* Viscosity coefficient of a particle from its smoothed damage phi'
+   (pair tlsph/damage): thesis Eq. 2.35, alpha_d wherever phi' > 0 (step);
+   'damping linear': alpha + (alpha_d - alpha) min(phi', 1). */
+TLSPH_INLINE double damaged_alpha(double phis, double alpha, double alpha_d, int linear)
+{
+  if (linear) return alpha + (alpha_d - alpha) * (phis < 1.0 ? phis : 1.0);
+  return (phis > 0.0) ? alpha_d : alpha;
+}
+
 }    // namespace TLSPH
 
 #endif

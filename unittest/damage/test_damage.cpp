@@ -378,10 +378,10 @@ BondChecker pull_until_broken(LAMMPS *lmp, int want, int extra, int max_steps)
    1. a bond breaks in the step its stretch first reaches s_c, never before
 ------------------------------------------------------------------------- */
 
-void tension_test(int dim, double vx)
+void tension_test(int dim, double vx, const std::string &extra = "")
 {
   LAMMPS *lmp = open_lammps();
-  run_script(lmp, bar_script(dim, "", 0.3, vx));
+  run_script(lmp, bar_script(dim, extra, 0.3, vx));
   BondChecker c = pull_until_broken(lmp, 10, 20, 600);
   c.report(dim == 2 ? "tension 2D" : "tension 3D");
   EXPECT_EQ(c.failures, 0);
@@ -403,6 +403,64 @@ TEST(Tension, breaks_exactly_at_sc_2d)
 TEST(Tension, breaks_exactly_at_sc_3d)
 {
   tension_test(3, 20.0);
+}
+
+/* ----------------------------------------------------------------------
+   1b. 'family R': the bond family reaches R > 2h. Every bond of it, those
+   beyond the kernel support (no force, W = 0) included, follows the same
+   criterion step by step (BondChecker: breaks in the step it reaches s_c,
+   never before, never heals, phi = 1 - intact/initial over the family),
+   and the long bonds do break
+------------------------------------------------------------------------- */
+
+void family_tension_test(int dim)
+{
+  const double h = 0.00133, R = 0.0035;    // 2h = 2.66 mm, family 3.5 spacings
+  LAMMPS *lmp = open_lammps();
+  run_script(lmp, bar_script(dim, "family 0.0035", 0.3, 20.0));
+  BondChecker c = pull_until_broken(lmp, 10, 40, 600);
+  c.report(dim == 2 ? "family tension 2D" : "family tension 3D");
+  EXPECT_EQ(c.failures, 0);
+  EXPECT_GE(c.nbroken, 10);
+  EXPECT_GT(c.first_break, 20);
+  // the family as the bond fix holds it: every pair within R, and the bonds
+  // beyond 2h among them, some broken
+  Atom *atom = lmp->atom;
+  const BondView v = bond_view(lmp);
+  int pairs = 0, npart = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int j = i + 1; j < atom->nlocal; j++) {
+      double r2 = 0.0;
+      for (int d = 0; d < dim; d++) r2 += (atom->x0[j][d] - atom->x0[i][d]) * (atom->x0[j][d] - atom->x0[i][d]);
+      if (r2 < R * R) pairs++;
+    }
+  for (const auto &kv : v.npartner) npart += kv.second;
+  EXPECT_EQ(2 * pairs, npart) << "bond family != every pair within R";
+  int longb = 0, long_broken = 0;
+  for (const auto &kv : v.state) {
+    const int i = atom->map(kv.first.first), j = atom->map(kv.first.second);
+    double r2 = 0.0;
+    for (int d = 0; d < dim; d++) r2 += (atom->x0[j][d] - atom->x0[i][d]) * (atom->x0[j][d] - atom->x0[i][d]);
+    if (r2 >= 4.0 * h * h) {
+      longb++;
+      if (kv.second == BROKEN) long_broken++;
+    }
+  }
+  printf("family %g: %d bonds, %d of them beyond 2h, %d of those broken\n", R,
+         (int) v.state.size(), longb, long_broken);
+  EXPECT_GT(longb, (int) v.state.size() / 4);
+  EXPECT_GT(long_broken, 0) << "no bond beyond the kernel support broke";
+  delete lmp;
+}
+
+TEST(Tension, family_breaks_exactly_at_sc_2d)
+{
+  family_tension_test(2);
+}
+
+TEST(Tension, family_breaks_exactly_at_sc_3d)
+{
+  family_tension_test(3);
 }
 
 /* ----------------------------------------------------------------------
@@ -810,6 +868,62 @@ TEST(Precrack, bonds_crossing_the_segment_2d)
   precrack_test(2, {-0.0011, 0.00213, 0.01327, 0.00631});
 }
 
+/* A notch on a lattice line whose tip lies on a lattice line too: the
+   bonds through the tip point pass exactly through the end of the segment,
+   and whether they are cut must not depend on round-off. The package cuts
+   them (the segment includes its end points). Reference in exact integer
+   arithmetic: sites at (k + 1/2) mm, i.e. odd multiples of 0.5 mm; the
+   segment y = 5 mm, x from -1.1 to 10 mm. */
+TEST(Precrack, bonds_through_the_tip_are_cut_2d)
+{
+  LAMMPS *lmp = open_lammps();
+  run_script(lmp, R"(units si
+dimension 2
+boundary s s p
+atom_style peri
+atom_modify map array
+lattice sq 0.001 origin 0.5 0.5 0.0
+region box block 0 20 0 10 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+set type 1 volume 1e-6
+set type 1 mass 7.8e-3
+pair_style tlsph/damage h 0.00133 alpha 1.0 gamma 1.0 precrack -0.0011 0.005 0.01 0.005
+pair_coeff 1 1 E 210e9 nu 0.3 rho 7800 Gc 1000
+run 0
+)");
+  Atom *atom = lmp->atom;
+  auto half_mm = [](double x) { return (long) std::lround(x / 0.0005); };
+  const BondView v = bond_view(lmp);
+  int expected = 0, through_tip = 0, wrong = 0;
+  for (const auto &kv : v.state) {
+    const int i = atom->map(kv.first.first), j = atom->map(kv.first.second);
+    const long ax = half_mm(atom->x0[i][0]), ay = half_mm(atom->x0[i][1]);
+    const long bx = half_mm(atom->x0[j][0]), by = half_mm(atom->x0[j][1]);
+    // the line y = 10 (half mm) is crossed strictly (sites are odd, never on it)
+    bool cut = false, tip = false;
+    if ((ay - 10) * (by - 10) < 0) {
+      // crossing x = ax + (10 - ay)(bx - ax)/(by - ay); compare with the tip
+      // x = 20 (half mm) exactly: (x - 20)(by - ay) has the sign of ...
+      const long num = (ax - 20) * (by - ay) + (10 - ay) * (bx - ax);    // (x - 20)(by - ay)
+      const long den = by - ay;
+      const bool at_or_before = (den > 0) ? num <= 0 : num >= 0;    // x <= 20
+      cut = at_or_before;    // the left end (-1.1 mm) is outside the plate
+      tip = (num == 0);
+    }
+    if (cut) expected++;
+    if (tip) through_tip++;
+    if ((kv.second != INTACT) != cut && wrong++ < 10)
+      ADD_FAILURE() << "bond " << kv.first.first << "-" << kv.first.second
+                    << (cut ? " should be cut" : " should be intact") << (tip ? " (through the tip)" : "");
+  }
+  printf("notch with its tip on a lattice line: %d bonds cut, %d of them through the tip\n",
+         expected, through_tip);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GE(through_tip, 2) << "no bond passes through the tip: the test is vacuous";
+  delete lmp;
+}
+
 TEST(Precrack, bonds_crossing_the_parallelogram_3d)
 {
   // a slanted parallelogram: O, O + U, O + W
@@ -913,18 +1027,20 @@ TEST(FreeParticle, loses_all_bonds_setup)
 
 namespace {
 
-double sc_from_lammps(int dim, double E, double nu, double Gc, double h)
+double sc_from_lammps(int dim, double E, double nu, double Gc, double h, double family = 0.0)
 {
+  char fam[64] = "";
+  if (family > 0.0) snprintf(fam, sizeof(fam), "family %.17g", family);
   LAMMPS *lmp = open_lammps();
   char buf[400];
   snprintf(buf, sizeof(buf),
            "units si\ndimension %d\nboundary s s %s\natom_style peri\nlattice %s 0.001\n"
            "region box block 0 3 0 3 %s\ncreate_box 1 box\ncreate_atoms 1 box\n"
            "set type 1 volume 1e-9\nset type 1 mass 1e-6\n"
-           "pair_style tlsph/damage h %.17g\npair_coeff 1 1 E %.17g nu %.17g rho 2450 Gc %.17g\n"
+           "pair_style tlsph/damage h %.17g %s\npair_coeff 1 1 E %.17g nu %.17g rho 2450 Gc %.17g\n"
            "run 0\n",
            dim, dim == 2 ? "p" : "s", dim == 2 ? "sq" : "sc", dim == 2 ? "-0.5 0.5" : "0 3", h,
-           E, nu, Gc);
+           fam, E, nu, Gc);
   run_script(lmp, buf);
   const double s = damage_pair(lmp)->critical_stretch_of(1);
   delete lmp;
@@ -946,6 +1062,13 @@ TEST(Criterion, critical_stretch_from_Gc)
   const double s3 = sc_from_lammps(3, E, nu, Gc, h);
   const double expect3 = sqrt(Gc / ((3 * mu + pow(0.75, 4) * (K - 5 * mu / 3)) * h));
   EXPECT_NEAR(s3, expect3, 1e-12 * expect3);
+  // 'family R' keeps the thesis's ratio of horizon to family radius (h for
+  // 2h): the horizon in Eq. 2.28 becomes R/2
+  const double R = 4.0 * 0.000333333333333;
+  const double s2f = sc_from_lammps(2, E, nu, Gc, h, R);
+  EXPECT_NEAR(s2f, expect2 * sqrt(h / (0.5 * R)), 1e-6 * expect2);
+  // the default family (2h) is the thesis's value exactly
+  EXPECT_EQ(sc_from_lammps(2, E, nu, Gc, h, 2.0 * h), s2);
 }
 
 /* ----------------------------------------------------------------------

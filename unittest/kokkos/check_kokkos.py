@@ -237,7 +237,8 @@ def case_damage(args):
     runs = (("cpu_off", False, "off", 1), ("cpu_on", False, "on", 1), ("kk", True, "off", 1),
             ("kk_on", True, "on", 1), ("kk_np2", True, "off", 2))
     for tag, kk, newton, np in runs:
-        log, prob = lmp_run(args, tag, "in.damage", ["-var", "newton", newton], kk, np)
+        log, prob = lmp_run(args, tag, "in.damage", ["-var", "newton", newton] + args.options,
+                            kk, np)
         problems += ["%s: %s" % (tag, p) for p in prob]
         if prob:
             continue
@@ -269,7 +270,7 @@ def case_damage(args):
     for writer in ("cpu", "kk"):
         _, prob = lmp_run(args, "first_" + writer, "in.damage",
                           ["-var", "newton", "off", "-var", "steps", "250", "-var", "restart",
-                           "half_" + writer], writer == "kk")
+                           "half_" + writer] + args.options, writer == "kk")
         problems += ["first_%s: %s" % (writer, p) for p in prob]
         if prob:
             continue
@@ -318,6 +319,9 @@ def main():
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart", "damage"])
+    ap.add_argument("--options", action="store_true",
+                    help="damage case with the pair_style tlsph/damage options family (4 dx) "
+                         "and damping linear (the restarts take them from the file)")
     ap.add_argument("--timeout", type=float, default=300)
     ap.add_argument("--threads", type=int, default=1,
                     help="Kokkos threads of the /kk runs (-k on t N; >1 needs an OpenMP "
@@ -325,6 +329,7 @@ def main():
     args = ap.parse_args()
     os.makedirs(args.workdir, exist_ok=True)
     shutil.copy(MATERIALS, args.workdir)
+    args.options = ["-var", "family", "0.004", "-var", "damping", "linear"] if args.options else []
     problems = {"forces": case_forces, "mpi": case_mpi, "restart": case_restart,
                 "damage": case_damage}[args.case](args)
     if problems:

@@ -14,6 +14,7 @@
 #include "comm.h"
 #include "error.h"
 #include "fix_tlsph_bonds.h"
+#include "tlsph_pair_terms.h"
 #include "update.h"
 
 #include <algorithm>
@@ -260,6 +261,7 @@ void PairTLSPHDamageKokkos<DeviceType>::smooth_kernel()
   double *phis = d_phis.data(), *pk = this->d_pk.data();
   const TLSPH::CubicSpline kern = this->kernel;
   const double alpha_d = this->alpha_d, alpha0 = this->alpha;
+  const int linear = this->damping_linear;
   const int ps = this->packed_size(), ia = 2 * DIM * DIM;
   Kokkos::parallel_for(
       "tlsph/damage/kk:smooth", Kokkos::RangePolicy<DeviceType>(0, nlocal),
@@ -285,7 +287,7 @@ void PairTLSPHDamageKokkos<DeviceType>::smooth_kernel()
           p = (den > 0.0) ? num / den : 0.0;
         }
         phis[i] = p;
-        pk[(long) ps * i + ia] = (p > 0.0) ? alpha_d : alpha0;
+        pk[(long) ps * i + ia] = TLSPH::damaged_alpha(p, alpha0, alpha_d, linear);
       });
 }
 

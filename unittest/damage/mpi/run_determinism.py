@@ -120,6 +120,9 @@ def main():
     ap.add_argument("--steps", type=int, default=500)
     ap.add_argument("--np", type=int, nargs="+", default=[1, 2, 3, 4])
     ap.add_argument("--timeout", type=float, default=120)
+    ap.add_argument("--family", type=float, default=0.0,
+                    help="pair_style tlsph/damage family, in dx (0: the default 2h); the "
+                         "restarted runs take it from the restart file")
     args = ap.parse_args()
     args.srcdir = os.path.abspath(args.srcdir)
     args.lmp = os.path.abspath(args.lmp)
@@ -128,10 +131,11 @@ def main():
     if 2 * half != n:
         ap.error("--steps must be even")
 
+    fam = ["-var", "family", repr(args.family)] if args.family > 0 else []
     problems, results = [], []
     for np in args.np:
         tag = "np%d" % np
-        prob = lammps(args, np, tag, "in.branch", ["-var", "steps", str(n)])
+        prob = lammps(args, np, tag, "in.branch", ["-var", "steps", str(n)] + fam)
         if not prob:
             cols, final, prob = final_state(args, tag, np)
             results.append((tag, (cols, final)))
@@ -140,7 +144,7 @@ def main():
     # N/2 on 2 ranks, restart file, N/2 more on 1 and on 4 ranks
     rfile = "first_half.restart"
     prob = lammps(args, 2, "first_half", "in.branch",
-                  ["-var", "steps", str(half), "-var", "restart", "1"])
+                  ["-var", "steps", str(half), "-var", "restart", "1"] + fam)
     problems += ["restart written on 2 ranks: %s" % p for p in prob]
     if not prob:
         for np in (1, 4):
