@@ -8,6 +8,10 @@
 #   bash bench/fracture.sh [SETTING ...]        default: thesis
 #   KDX="1.67 1.0" BDX="0.5" bash bench/fracture.sh thesis gamma1   (a subset)
 #   REPORT_ONLY=1 bash bench/fracture.sh ...    the report from finished runs
+#   bash bench/fracture.sh all                  every setting of the report in
+#                                               doc/fracture-convergence.md
+# The report inserts bench/fracture-notes.md (the findings, written from its
+# tables) after its summary.
 #
 # Settings (the variables each passes to both decks; the decks' own defaults
 # are the thesis's coefficients per benchmark):
@@ -44,6 +48,26 @@ KDX="${KDX-1.67 1.33 1.11 1.0 0.833 0.667 0.5}"
 BDX="${BDX-0.5 0.333}"
 settings=("$@")
 [ ${#settings[@]} -eq 0 ] && settings=(thesis)
+
+# 'all': the settings of doc/fracture-convergence.md, each at its resolutions
+SCANS="scan-0.03-0.4-0.5-0.5-1.0 scan-0.03-0.4-0.5-0.5-0.0 scan-0.03-0.4-0.65-0.1-0.0
+  scan-0.03-3.1-0.5-0.5-0.0 scan-0.03-3.1-0.65-0.1-0.0 scan-0.09-0.3-0.65-0.1-0.0
+  scan-0.09-0.4-0.5-0.5-0.0 scan-0.09-0.4-0.65-0.1-0.0 scan-0.09-0.5-0.65-0.1-0.0
+  scan-0.09-0.7-0.65-0.1-0.0 scan-0.09-1.0-0.65-0.1-0.0 scan-0.09-1.5-0.65-0.1-0.0
+  scan-0.09-2.0-0.65-0.1-0.0 scan-0.09-3.1-0.5-0.5-0.0 scan-0.09-3.1-0.65-0.1-0.0
+  scan-0.09-3.1-0.65-0.1-1.0"
+if [ "${settings[0]}" = all ]; then
+  # shellcheck disable=SC2086
+  {
+    NO_REPORT=1 bash "$0" thesis h2 common
+    KDX="1.67 1.0" NO_REPORT=1 bash "$0" family4 linear
+    KDX="" NO_REPORT=1 bash "$0" load2
+    KDX="1.0" BDX="0.5" NO_REPORT=1 bash "$0" $SCANS
+  }
+  # shellcheck disable=SC2206
+  settings=(thesis h2 common family4 linear load2 $SCANS)
+  KDX="" BDX=""
+fi
 
 vars_of() {
   case "$1" in
@@ -98,4 +122,6 @@ for s in "${settings[@]}"; do
   # shellcheck disable=SC2086
   for mm in $BDX; do run_deck crack-branching in.crack-branching "$s" "$mm" -var tend 90e-6 $v; done
 done
-"$PY" "$HERE/fracture_report.py" --out "$OUT" --doc "$ROOT/doc/fracture-convergence.md" "${settings[@]}"
+[ -n "${NO_REPORT:-}" ] && exit 0
+"$PY" "$HERE/fracture_report.py" --out "$OUT" --doc "$ROOT/doc/fracture-convergence.md" \
+  --notes "$HERE/fracture-notes.md" "${settings[@]}"
