@@ -746,6 +746,18 @@ bool crosses_3d(const double *A, const double *B, const double *c)
   return t > 0.0 && t < 1.0 && a >= 0.0 && a <= 1.0 && b >= 0.0 && b <= 1.0;
 }
 
+// the 2D plate of the pre-crack tests: 20 x 10 sites at (k + 1/2) mm
+const char *const PRECRACK_PLATE_2D = R"(boundary s s p
+atom_style peri
+atom_modify map array
+lattice sq 0.001 origin 0.5 0.5 0.0
+region box block 0 20 0 10 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+set type 1 volume 1e-6
+set type 1 mass 7.8e-3
+)";
+
 void precrack_test(int dim, const std::vector<double> &crack)
 {
   LAMMPS *lmp = open_lammps();
@@ -757,16 +769,7 @@ void precrack_test(int dim, const std::vector<double> &crack)
   }
   std::string s = "units si\ndimension " + std::to_string(dim) + "\n";
   if (dim == 2)
-    s += R"(boundary s s p
-atom_style peri
-atom_modify map array
-lattice sq 0.001 origin 0.5 0.5 0.0
-region box block 0 20 0 10 -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-set type 1 volume 1e-6
-set type 1 mass 7.8e-3
-)";
+    s += PRECRACK_PLATE_2D;
   else
     s += R"(boundary s s s
 atom_style peri
@@ -877,21 +880,9 @@ TEST(Precrack, bonds_crossing_the_segment_2d)
 TEST(Precrack, bonds_through_the_tip_are_cut_2d)
 {
   LAMMPS *lmp = open_lammps();
-  run_script(lmp, R"(units si
-dimension 2
-boundary s s p
-atom_style peri
-atom_modify map array
-lattice sq 0.001 origin 0.5 0.5 0.0
-region box block 0 20 0 10 -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-set type 1 volume 1e-6
-set type 1 mass 7.8e-3
-pair_style tlsph/damage h 0.00133 alpha 1.0 gamma 1.0 precrack -0.0011 0.005 0.01 0.005
-pair_coeff 1 1 E 210e9 nu 0.3 rho 7800 Gc 1000
-run 0
-)");
+  run_script(lmp, std::string("units si\ndimension 2\n") + PRECRACK_PLATE_2D +
+                      "pair_style tlsph/damage h 0.00133 alpha 1.0 gamma 1.0 precrack -0.0011 "
+                      "0.005 0.01 0.005\npair_coeff 1 1 E 210e9 nu 0.3 rho 7800 Gc 1000\nrun 0\n");
   Atom *atom = lmp->atom;
   auto half_mm = [](double x) { return (long) std::lround(x / 0.0005); };
   const BondView v = bond_view(lmp);

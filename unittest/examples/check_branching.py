@@ -24,11 +24,10 @@ Prints PASSED or FAILED (ctest matches PASSED) and exits 0 / 1.
 """
 
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import example_args, verdict  # noqa: E402
+from checks import example_args, run_lammps, verdict  # noqa: E402
 
 RAYLEIGH = 2125.0
 
@@ -42,10 +41,7 @@ def main():
     cmd = [os.path.abspath(a.lmp), "-in", "in.crack-branching", "-log", prefix + ".log",
            "-screen", "none", "-var", "out", prefix, "-var", "dx", "0.0005", "-var", "hdx", "2.0",
            "-var", "tend", repr(a.tend), "-var", "timg", "0"]
-    p = subprocess.run(cmd, capture_output=True, text=True, cwd=a.example)
-    if p.returncode != 0:
-        print(p.stdout[-2000:], p.stderr[-2000:])
-        print("FAILED: LAMMPS exited with", p.returncode)
+    if not run_lammps(cmd, cwd=a.example):
         return 1
     sys.path.insert(0, a.tools)
     sys.path.insert(0, os.path.join(a.example, "..", "common"))

@@ -31,11 +31,10 @@ Prints PASSED or FAILED (ctest matches PASSED) and exits 0 / 1.
 
 import math
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import example_args, verdict  # noqa: E402
+from checks import example_args, run_lammps, verdict  # noqa: E402
 
 RAYLEIGH = 2803.0
 
@@ -53,10 +52,7 @@ def main():
     cmd = [a.lmp, "-in", os.path.join(a.example, "in.kalthoff-2d"), "-log", prefix + ".log",
            "-screen", "none", "-var", "out", prefix, "-var", "dx", a.dx,
            "-var", "tend", repr(a.tend), "-var", "timg", "0", "-var", "matfile", matfile]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        print(p.stdout[-2000:], p.stderr[-2000:])
-        print("FAILED: LAMMPS exited with", p.returncode)
+    if not run_lammps(cmd):
         return 1
     sys.path.insert(0, a.tools)
     sys.path.insert(0, os.path.join(a.example, "..", "common"))

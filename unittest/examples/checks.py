@@ -4,6 +4,7 @@ ctest matches (PASS_REGULAR_EXPRESSION "PASSED")."""
 
 import argparse
 import os
+import subprocess
 
 
 def example_args(example, more=None):
@@ -27,3 +28,13 @@ def verdict(checks):
         ok &= bool(good)
     print("PASSED" if ok else "FAILED")
     return 0 if ok else 1
+
+
+def run_lammps(cmd, cwd=None):
+    """run a LAMMPS command line; on failure print its output's tail and FAILED, return False"""
+    p = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd)
+    if p.returncode != 0:
+        print(p.stdout[-2000:], p.stderr[-2000:])
+        print("FAILED: LAMMPS exited with", p.returncode)
+        return False
+    return True
