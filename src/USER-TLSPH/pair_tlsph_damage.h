@@ -43,6 +43,8 @@ class PairTLSPHDamage : public PairTLSPH {
   // read by compute tlsph/damage/atom and fix tlsph/velocity/filter
   double damage(int i) const { return phi[i]; }
   double smoothed_damage(int i) const { return phis[i]; }
+  // the viscosity coefficient alpha_i of local particle i (after a force call)
+  double viscosity_alpha(int i) const { return alphas[i]; }
   // the partners (particle indices) of the intact bonds of local particle i
   // (valid after a force call)
   const int *intact_partners(int i, int &n) const

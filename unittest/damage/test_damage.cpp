@@ -1139,6 +1139,49 @@ void smoothed_damage_reneighbor_test(const std::string &correction)
   delete lmp;
 }
 
+/* ----------------------------------------------------------------------
+   adaptive viscosity: alpha_i = alpha_d where phi'_i > 0, else alpha (thesis
+   Eq. 2.35, 'damping step'), or alpha + (alpha_d - alpha) min(phi'_i, 1)
+   ('damping linear'), on every particle after bonds have broken
+------------------------------------------------------------------------- */
+
+void damping_test(const std::string &mode)
+{
+  const double alpha = 0.5, alpha_d = 2.0;    // PLATE_VISC
+  LAMMPS *lmp = open_lammps();
+  run_script(lmp, free_plate("damping " + mode));
+  for (int n = 0; n < 150; n++) step(lmp);
+  const Columns c = damage_columns(lmp);
+  PairTLSPHDamage *pair = damage_pair(lmp);
+  Atom *atom = lmp->atom;
+  int partial = 0, damaged = 0, wrong = 0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double ps = c.at(atom->tag[i])[1];
+    const double expect = (mode == "linear") ? alpha + (alpha_d - alpha) * std::min(ps, 1.0)
+                                             : (ps > 0.0 ? alpha_d : alpha);
+    if (ps > 0.0) damaged++;
+    if (ps > 0.0 && ps < 1.0) partial++;
+    if (std::fabs(pair->viscosity_alpha(i) - expect) > 1e-15 && wrong++ < 10)
+      ADD_FAILURE() << "atom " << atom->tag[i] << ": phi' " << ps << ", alpha_i "
+                    << pair->viscosity_alpha(i) << ", expected " << expect;
+  }
+  printf("damping %s: %d particles with phi' > 0, %d of them with phi' < 1\n", mode.c_str(),
+         damaged, partial);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(partial, 10) << "too few partly damaged particles: the test does not tell the laws apart";
+  delete lmp;
+}
+
+TEST(Damping, step_is_eq_2_35)
+{
+  damping_test("step");
+}
+
+TEST(Damping, linear_grows_with_smoothed_damage)
+{
+  damping_test("linear");
+}
+
 TEST(SmoothedDamage, independent_of_reneighboring_rebuild)
 {
   smoothed_damage_reneighbor_test("rebuild");
