@@ -209,6 +209,14 @@ void PairTLSPHDamage::read_restart_settings(FILE *fp)
   double v[6];
   if (comm->me == 0) utils::sfread(FLERR, v, sizeof(double), 6, fp, nullptr, error);
   MPI_Bcast(v, 6, MPI_DOUBLE, 0, world);
+  // a file of another layout (e.g. before 'family' and 'damping' were
+  // stored) reads numbers out of place: refuse it with a message
+  const bool flag_ok = (v[1] == 0.0 || v[1] == 1.0) && (v[2] == 0.0 || v[2] == 1.0) &&
+      (v[5] == 0.0 || v[5] == 1.0);
+  if (!(flag_ok && v[0] >= 0.0 && v[3] >= 0.0 && v[3] == std::floor(v[3]) && v[3] < 1.0e6 &&
+        v[4] >= 0.0 && std::isfinite(v[4])))
+    error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
+                      "version's layout (written by another version of the package?)");
   alpha_d = v[0];
   absolute = static_cast<int>(v[1]);
   rebuild = static_cast<int>(v[2]);
