@@ -28,7 +28,8 @@
 #              alpha_d 0.4 (crack branching); h = 1.33 dx
 #   linear     kcoef with 'damping linear' (alpha_i grows with phi')
 #   load2      a diagnostic, not a model setting: the glass plate at 2 MPa
-#              instead of the benchmark's 1 MPa (thesis coefficients)
+#              instead of the benchmark's 1 MPa (thesis coefficients);
+#              load-X the same at X MPa
 #   scan-A-AD-PHIC-EPS-G  alpha A, alpha_d AD, filter PHIC EPS, gamma G in
 #              both decks (the coefficient scan: run it at one dx per deck,
 #              KDX=1.0 BDX=0.5)
@@ -62,11 +63,11 @@ if [ "${settings[0]}" = all ]; then
   {
     NO_REPORT=1 bash "$0" thesis h2 common
     KDX="1.67 1.0" NO_REPORT=1 bash "$0" family4 linear
-    KDX="" NO_REPORT=1 bash "$0" load2
+    KDX="" NO_REPORT=1 bash "$0" load2 load-1.25 load-1.5 load-1.75
     KDX="1.0" BDX="0.5" NO_REPORT=1 bash "$0" $SCANS
   }
   # shellcheck disable=SC2206
-  settings=(thesis h2 common family4 linear load2 $SCANS)
+  settings=(thesis h2 common family4 linear load2 load-1.25 load-1.5 load-1.75 $SCANS)
   KDX="" BDX=""
 fi
 
@@ -81,11 +82,12 @@ vars_of() {
     kcoef) echo "-var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     linear) echo "-var damping linear -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     load2) echo "-var sigma0 2.0e6" ;;
+    load-*) echo "-var sigma0 ${1#load-}e6" ;;    # load-1.5: 1.5 MPa (diagnostic)
     scan-*)    # scan-ALPHA-ALPHAD-PHIC-EPS-GAMMA
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis h2 gamma1 conservative family4 common kcoef linear load2 scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis h2 gamma1 conservative family4 common kcoef linear load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }
