@@ -33,6 +33,13 @@
 #   scan-A-AD-PHIC-EPS-G  alpha A, alpha_d AD, filter PHIC EPS, gamma G in
 #              both decks (the coefficient scan: run it at one dx per deck,
 #              KDX=1.0 BDX=0.5)
+#   calibrated the thesis's setting with the fracture energy each
+#              discretisation dissipates made equal to the material's G_c:
+#              the decks give the pair style G_c / gmodel, gmodel = the
+#              model's fracture energy per unit G_c given, measured by the
+#              pure-shear strip (bench/toughness.sh, doc/toughness.md):
+#              1.70 for the steel (nu 0.3), 1.47 for the glass (nu 0.2)
+#   h2-calibrated  the same with h = 2 dx (gmodel 0.81 steel, 0.75 glass)
 #   kcoef      one coefficient set for both decks: the Kalthoff deck's
 #              (alpha 0.09, alpha_d 3.1, gamma 0, filter 0.65 0.1), h = 1.33 dx
 # Runs are resumable: a finished case (its log ends with the wall time) is
@@ -61,18 +68,21 @@ SCANS="scan-0.03-0.4-0.5-0.5-1.0 scan-0.03-0.4-0.5-0.5-0.0 scan-0.03-0.4-0.65-0.
 if [ "${settings[0]}" = all ]; then
   # shellcheck disable=SC2086
   {
-    NO_REPORT=1 bash "$0" thesis h2 common
-    KDX="1.67 1.0" NO_REPORT=1 bash "$0" family4 linear
+    NO_REPORT=1 bash "$0" thesis h2 common calibrated
+    KDX="1.67 1.0" NO_REPORT=1 bash "$0" family4 linear h2-calibrated
     KDX="" NO_REPORT=1 bash "$0" load2 load-1.25 load-1.5 load-1.75
     KDX="1.0" BDX="0.5" NO_REPORT=1 bash "$0" $SCANS
   }
   # shellcheck disable=SC2206
-  settings=(thesis h2 common family4 linear load2 load-1.25 load-1.5 load-1.75 $SCANS)
+  settings=(thesis h2 common calibrated family4 linear h2-calibrated load2 load-1.25 load-1.5 load-1.75 $SCANS)
   KDX="" BDX=""
 fi
 
-vars_of() {
+vars_of() {    # setting [kalthoff|branching]
   case "$1" in
+    calibrated) [ "${2:-}" = kalthoff ] && echo "-var gmodel 1.70" || echo "-var gmodel 1.47" ;;
+    h2-calibrated) [ "${2:-}" = kalthoff ] && echo "-var hdx 2.0 -var gmodel 0.81" \
+                                            || echo "-var hdx 2.0 -var gmodel 0.75" ;;
     thesis) ;;
     h2) echo "-var hdx 2.0" ;;
     gamma1) echo "-var gamma 1.0" ;;
@@ -87,7 +97,7 @@ vars_of() {
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis h2 gamma1 conservative family4 common kcoef linear load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }
@@ -119,11 +129,12 @@ run_deck() {    # example deck setting dxmm extra...
 }
 
 for s in "${settings[@]}"; do
-  v=$(vars_of "$s") || exit 1
+  vk=$(vars_of "$s" kalthoff) || exit 1
+  vb=$(vars_of "$s" branching) || exit 1
   # shellcheck disable=SC2086
-  for mm in $KDX; do run_deck kalthoff-2d in.kalthoff-2d "$s" "$mm" -var tend 110e-6 $v; done
+  for mm in $KDX; do run_deck kalthoff-2d in.kalthoff-2d "$s" "$mm" -var tend 110e-6 $vk; done
   # shellcheck disable=SC2086
-  for mm in $BDX; do run_deck crack-branching in.crack-branching "$s" "$mm" -var tend 90e-6 $v; done
+  for mm in $BDX; do run_deck crack-branching in.crack-branching "$s" "$mm" -var tend 90e-6 $vb; done
 done
 [ -n "${NO_REPORT:-}" ] && exit 0
 "$PY" "$HERE/fracture_report.py" --out "$OUT" --doc "$ROOT/doc/fracture-convergence.md" \
