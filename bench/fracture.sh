@@ -40,9 +40,6 @@
 #              pure-shear strip (bench/toughness.sh, doc/toughness.md):
 #              1.70 for the steel (nu 0.3), 1.47 for the glass (nu 0.2)
 #   h2-calibrated  the same with h = 2 dx (gmodel 0.81 steel, 0.75 glass)
-#   strain     'criterion strain' (the particles' strain along the bond),
-#              h = 1.33 dx, thesis coefficients, calibrated like
-#              'calibrated' (gmodel 4.10 steel, 3.30 glass: bench/toughness.sh)
 #   kcoef      one coefficient set for both decks: the Kalthoff deck's
 #              (alpha 0.09, alpha_d 3.1, gamma 0, filter 0.65 0.1), h = 1.33 dx
 # Runs are resumable: a finished case (its log ends with the wall time) is
@@ -84,8 +81,6 @@ fi
 vars_of() {    # setting [kalthoff|branching]
   case "$1" in
     calibrated) [ "${2:-}" = kalthoff ] && echo "-var gmodel 1.70" || echo "-var gmodel 1.47" ;;
-    strain) [ "${2:-}" = kalthoff ] && echo "-var crit strain -var gmodel 4.10" \
-                                     || echo "-var crit strain -var gmodel 3.30" ;;
     h2-calibrated) [ "${2:-}" = kalthoff ] && echo "-var hdx 2.0 -var gmodel 0.81" \
                                             || echo "-var hdx 2.0 -var gmodel 0.75" ;;
     thesis) ;;
@@ -102,7 +97,7 @@ vars_of() {    # setting [kalthoff|branching]
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated strain h2 gamma1 conservative family4 common kcoef linear load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }

@@ -6,7 +6,7 @@
 # (steady crack speed: the model's dynamic fracture energy Gamma(v)); then the
 # report doc/toughness.md with doc/toughness.png (bench/toughness_report.py).
 #
-#   bash bench/toughness.sh            every case (about 5 min on 2 cores)
+#   bash bench/toughness.sh            every case (about 6 min on 2 cores)
 #   REPORT_ONLY=1 bash bench/toughness.sh
 # Runs are resumable (a finished case is kept unless FORCE=1).
 # Output: bench/out/toughness/<case>.{log,dat,screen}
@@ -47,6 +47,14 @@ CASES=(
 for f in 1.1 1.25 1.5 2 3; do
   CASES+=("run-h1.33-nu0.2-dx0.5-f$f|-var dx $D05 -var G0 $("$PY" -c "print(round($f*4.41, 4))")")
   CASES+=("run-h2-nu0.2-dx0.5-f$f|-var dx $D05 -var hdx 2 -var G0 $("$PY" -c "print(round($f*2.26, 4))")")
+done
+# the lattice turned against the crack line (lattice orient x oa ob 0): theta =
+# atan(ob/oa) = 0, 18.4, 26.6, 33.7, 45 deg; ramp loading, the crack runs 10 mm
+for o in "1 0" "3 1" "2 1" "3 2" "1 1"; do
+  set -- $o
+  CASES+=("orient-h1.33-o$1$2|-var dx $D05 -var oa $1 -var ob $2")
+  CASES+=("orient-h2-o$1$2|-var dx $D05 -var hdx 2 -var oa $1 -var ob $2")
+  CASES+=("orient-fam4-o$1$2|-var dx $D05 -var famdx 4 -var oa $1 -var ob $2")
 done
 for f in 1.25 2; do
   CASES+=("run-h1.33-nu0.2-dx0.333-f$f|-var dx $D033 -var G0 $("$PY" -c "print(round($f*4.41, 4))")")

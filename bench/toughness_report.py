@@ -47,12 +47,11 @@ def log_values(path):
     v = last(r"critical stretch s_c = (\S+)")
     if v:
         out["sc"] = v[0]
-    v = last(r"Lattice spacing in x,y,z = (\S+)")
+    # the deck's 'variable h equal ${hdx}*${dx}', as run (the lattice spacing
+    # LAMMPS prints is not dx for a turned lattice)
+    v = last(r"variable h\s+equal (\S+)\*(\S+)", 2)
     if v:
-        out["dx"] = v[0]
-    v = last(r"tlsph/damage h (\S+)")
-    if v and "dx" in out:
-        out["hdx"] = v[0] / out["dx"]
+        out["hdx"], out["dx"] = v
     v = last(r"\nfamily (\S+)")
     out["family"] = v[0] / out["dx"] if v and "dx" in out else None
     out["finished"] = "Total wall time" in txt
@@ -95,6 +94,26 @@ def steady(dat):
     return res
 
 
+def orient(dat, final):
+    """ramp with a turned lattice: G at onset, 1 mm and 5 mm of growth; the
+    crack path's angle to the crack line (a line fitted to the reference
+    positions of the particles with phi >= 0.3 beyond 1 mm ahead of the
+    pre-crack tip, from the final damage dump)"""
+    r = ramp(dat)
+    if r is None:
+        return None
+    d = np.loadtxt(dat, ndmin=2)
+    tip0 = d[0, 4]
+    adv = np.nonzero(d[:, 4] - tip0 >= 0.005)[0]
+    r["G_5mm"] = d[adv[0], 2] if len(adv) else float("nan")
+    r["off"] = int(d[:, 5].max())
+    rows = [ln.split() for ln in open(final) if len(ln.split()) == 4 and not ln.startswith("ITEM")]
+    p = np.array([[float(v) for v in row[1:]] for row in rows]) if rows else np.zeros((0, 3))
+    m = (p[:, 0] > tip0 + 0.001) & (p[:, 2] >= 0.3) if len(p) else np.zeros(0, bool)
+    r["path"] = np.degrees(np.arctan(np.polyfit(p[m, 0], p[m, 1], 1)[0])) if m.sum() > 3 else float("nan")
+    return r
+
+
 def code_of(outdir, names):
     """The commits the runs were made at (from the md5 of the binary is not
     enough: the report lists the git commit at report time and the binaries)."""
@@ -113,7 +132,7 @@ def main():
     ap.add_argument("cases", nargs="+")
     a = ap.parse_args()
 
-    rows_r, rows_s = [], []
+    rows_r, rows_s, rows_o = [], [], []
     for n in a.cases:
         logp = os.path.join(a.out, n + ".log")
         datp = os.path.join(a.out, n + ".dat")
@@ -121,7 +140,9 @@ def main():
             print(f"toughness_report: {n}: no run", file=sys.stderr)
             continue
         lv = log_values(logp)
-        if n.startswith("ramp-"):
+        if n.startswith("orient-"):
+            rows_o.append((n, lv, orient(datp, os.path.join(a.out, n + ".final.dump"))))
+        elif n.startswith("ramp-"):
             r = ramp(datp)
             rows_r.append((n, lv, r))
         else:
@@ -171,6 +192,29 @@ def main():
                  f"{lv.get('dx', 0) * 1e3:.3g} | {lv.get('Gc', float('nan')):.5g} | {lv.get('sc', float('nan')):.4g} | "
                  f"{r['G_onset']:.4g} | **{r['G_onset'] / lv['Gc']:.3f}** | {r['G_1mm'] / lv['Gc']:.3f} | "
                  + (f"{r['G_onset'] / GLASS_GC:.3f} |" if n.endswith("-cal") else " |"))
+    L.append("")
+    L.append("## Direction: the lattice turned against the crack")
+    L.append("")
+    L.append("The same ramp with the square lattice turned by theta against the crack line (LAMMPS "
+             "`lattice sq ... orient x a b 0`, theta = atan(b/a)); dx = 0.5 mm; G in units of the "
+             "G_c given. A continuum of the same material has the same fracture energy in every "
+             "direction and grows the crack straight along its line (mode I). Path: the angle to "
+             "the crack line of a line fitted to the particles with phi >= 0.3 more than 1 mm "
+             "ahead of the pre-crack tip at the end (10 mm of growth); off: particles with a broken "
+             "bond farther than D/4 from the line.")
+    L.append("")
+    L.append("| case | h/dx | family | theta [deg] | G_onset / G_c | G at 1 mm / G_c | G at 5 mm / G_c | "
+             "path [deg] | off |")
+    L.append("|---|---|---|---|---|---|---|---|---|")
+    for n, lv, r in rows_o:
+        o = n.rsplit("-o", 1)[1]
+        th = np.degrees(np.arctan2(int(o[1]), int(o[0])))
+        fam = f"{lv['family']:.0f} dx" if lv.get("family") else "2h"
+        if r is None:
+            L.append(f"| {n} | {lv.get('hdx', 0):.2f} | {fam} | {th:.1f} | no growth | | | | |")
+            continue
+        L.append(f"| {n} | {lv.get('hdx', 0):.2f} | {fam} | {th:.1f} | {r['G_onset'] / lv['Gc']:.3f} | "
+                 f"{r['G_1mm'] / lv['Gc']:.3f} | {r['G_5mm'] / lv['Gc']:.3f} | {r['path']:.1f} | {r['off']} |")
     L.append("")
     L.append("## Dynamic fracture energy (fixed grips, steady crack speed)")
     L.append("")

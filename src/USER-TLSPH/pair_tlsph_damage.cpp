@@ -26,13 +26,11 @@ PairTLSPHDamage::PairTLSPHDamage(LAMMPS *lmp) : PairTLSPH(lmp)
 {
   alpha_d = 1.0;
   absolute = 0;
-  continuum = 0;
   rebuild = 0;
   family = 0.0;
   damping_linear = 0;
   nmax_d = 0;
   phi = phis = alphas = nullptr;
-  etr = nullptr;
   comm_stage = 0;
   nbroken_local = 0;
   order = 1;
@@ -43,11 +41,10 @@ PairTLSPHDamage::~PairTLSPHDamage()
   memory->destroy(phi);
   memory->destroy(phis);
   memory->destroy(alphas);
-  memory->destroy(etr);
 }
 
 /* ----------------------------------------------------------------------
-   pair_style tlsph/damage (keywords of tlsph) [alpha_d A] [criterion tension|absolute|strain]
+   pair_style tlsph/damage (keywords of tlsph) [alpha_d A] [criterion tension|absolute]
      [correction rebuild|setup] [family R] [damping step|linear] [precrack x1 y1 x2 y2 | x1 y1 z1 x2 y2 z2 x3 y3 z3] ...
 ------------------------------------------------------------------------- */
 
@@ -57,7 +54,6 @@ void PairTLSPHDamage::settings(int narg, char **arg)
   bool have_alpha_d = false, have_gradient = false;
   double alpha_d_value = 0.0;
   absolute = 0;
-  continuum = 0;
   family = 0.0;
   damping_linear = 0;
   rebuild = 0;    // 'setup' (the thesis): measured better on Kalthoff-Winkler, see doc
@@ -75,13 +71,11 @@ void PairTLSPHDamage::settings(int narg, char **arg)
       iarg += 2;
     } else if (key == "criterion") {
       if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: criterion needs a value");
-      absolute = continuum = 0;
       if (strcmp(arg[iarg + 1], "tension") == 0) absolute = 0;
       else if (strcmp(arg[iarg + 1], "absolute") == 0) absolute = 1;
-      else if (strcmp(arg[iarg + 1], "strain") == 0) continuum = 1;
       else
-        error->all(FLERR, "pair_style tlsph/damage: criterion must be 'tension', 'absolute' or "
-                          "'strain', got '{}'", arg[iarg + 1]);
+        error->all(FLERR, "pair_style tlsph/damage: criterion must be 'tension' or 'absolute', "
+                          "got '{}'", arg[iarg + 1]);
       iarg += 2;
     } else if (key == "correction") {
       if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: correction needs a value");
@@ -203,8 +197,7 @@ void PairTLSPHDamage::read_material_extra(FILE *fp, int type)
 void PairTLSPHDamage::write_restart_settings(FILE *fp)
 {
   PairTLSPH::write_restart_settings(fp);
-  // the criterion: 0 tension, 1 absolute, 2 strain
-  double v[6] = {alpha_d, continuum ? 2.0 : (double) absolute, (double) rebuild, (double) cracks.size(), family,
+  double v[6] = {alpha_d, (double) absolute, (double) rebuild, (double) cracks.size(), family,
                  (double) damping_linear};
   fwrite(v, sizeof(double), 6, fp);
   for (const auto &c : cracks) fwrite(c.data(), sizeof(double), 9, fp);
@@ -218,15 +211,14 @@ void PairTLSPHDamage::read_restart_settings(FILE *fp)
   MPI_Bcast(v, 6, MPI_DOUBLE, 0, world);
   // a file of another layout (e.g. before 'family' and 'damping' were
   // stored) reads numbers out of place: refuse it with a message
-  const bool flag_ok = (v[1] == 0.0 || v[1] == 1.0 || v[1] == 2.0) && (v[2] == 0.0 || v[2] == 1.0) &&
+  const bool flag_ok = (v[1] == 0.0 || v[1] == 1.0) && (v[2] == 0.0 || v[2] == 1.0) &&
       (v[5] == 0.0 || v[5] == 1.0);
   if (!(flag_ok && v[0] >= 0.0 && v[3] >= 0.0 && v[3] == std::floor(v[3]) && v[3] < 1.0e6 &&
         v[4] >= 0.0 && std::isfinite(v[4])))
     error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
                       "version's layout (written by another version of the package?)");
   alpha_d = v[0];
-  absolute = (v[1] == 1.0);
-  continuum = (v[1] == 2.0);
+  absolute = static_cast<int>(v[1]);
   rebuild = static_cast<int>(v[2]);
   family = v[4];
   damping_linear = static_cast<int>(v[5]);
@@ -241,9 +233,6 @@ void PairTLSPHDamage::read_restart_settings(FILE *fp)
 
 void PairTLSPHDamage::init_style()
 {
-  if (continuum && rebuild)
-    error->all(FLERR, "pair_style tlsph/damage: 'criterion strain' needs 'correction setup' (the "
-                      "strain it uses includes the broken bonds, which 'correction rebuild' drops)");
   correction_from_all_partners = !rebuild;
   PairTLSPH::init_style();
   // 'setup': each particle's correction is frozen once, after the pre-cracks
@@ -285,7 +274,7 @@ void PairTLSPHDamage::init_style()
       stretch_up[a * ntp + b] = (1.0 + s_c) * (1.0 + s_c);
       stretch_down[a * ntp + b] = (s_c < 1.0) ? (1.0 - s_c) * (1.0 - s_c) : 0.0;
     }
-  comm_forward = MAX(comm_forward, continuum ? 9 : 1);
+  comm_forward = MAX(comm_forward, 1);
   comm_reverse = MAX(comm_reverse, 1);
   nmax_d = 0;
 }
@@ -302,11 +291,9 @@ void PairTLSPHDamage::grow_damage()
   memory->destroy(phi);
   memory->destroy(phis);
   memory->destroy(alphas);
-  memory->destroy(etr);
   memory->create(phi, nmax_d, "tlsph/damage:phi");
   memory->create(phis, nmax_d, "tlsph/damage:phis");
   memory->create(alphas, nmax_d, "tlsph/damage:alpha");
-  if (continuum) memory->create(etr, nmax_d, 9, "tlsph/damage:etr");
   alpha_atom = alphas;
 }
 
@@ -424,7 +411,7 @@ void PairTLSPHDamage::recorrect(int i)
    of a bond compute the same stretch from the same positions (ghosts are
    current at this point), so both drop it. One pass over the bond cache
    instead of a breaking pass and a deformation pass. */
-template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS, int CONT>
+template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS>
 void PairTLSPHDamage::deform_and_break()
 {
   double **x = atom->x;
@@ -456,11 +443,8 @@ void PairTLSPHDamage::deform_and_break()
       const double lim_up = PAIRS ? up[ti + tj] * (1.0 - 1.0e-10) : up0;
       const double lim_down = ABS ? (PAIRS ? down[ti + tj] * (1.0 + 1.0e-10) : down0) : 0.0;
       double du[3];
-      const bool breaks = CONT ? TLSPH::strain_bond_breaks<DIM>(xi, xj, x0i, x0j, etr[i], etr[j],
-                                                                lim_up, du)
-                               : TLSPH::bond_breaks<DIM, ABS>(xi, xj, x0i, x0j, lim_up, lim_down,
-                                                              MIN(sc[type[i]], sc[tj]), du);
-      if (breaks) {
+      if (TLSPH::bond_breaks<DIM, ABS>(xi, xj, x0i, x0j, lim_up, lim_down,
+                                       MIN(sc[type[i]], sc[tj]), du)) {
         bonds->state[i][lean.k[s + m]] = FixTLSPHBonds::BROKEN;
         nbroken_local++;
         // move the bond behind the intact ones (it stays in the segment:
@@ -502,52 +486,12 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPHDamage::dispatch_break()
   // one limit for all type pairs unless the types' critical stretches differ
   bool pairs = false;
   for (int t = 2; t <= atom->ntypes; t++) pairs = pairs || (sc[t] != sc[1]);
-  if (continuum) {
-    // the strain of every particle before this step's breaks, ghosts included
-    trial_strain<DIM>();
-    comm_stage = 3;
-    comm->forward_comm_pair(this);
-    comm_stage = 0;
-    if (pairs) deform_and_break<DIM, ORDER, LAWS, 0, 1, 1>();
-    else deform_and_break<DIM, ORDER, LAWS, 0, 0, 1>();
-  } else if (absolute) {
-    if (pairs) deform_and_break<DIM, ORDER, LAWS, 1, 1, 0>();
-    else deform_and_break<DIM, ORDER, LAWS, 1, 0, 0>();
+  if (absolute) {
+    if (pairs) deform_and_break<DIM, ORDER, LAWS, 1, 1>();
+    else deform_and_break<DIM, ORDER, LAWS, 1, 0>();
   } else {
-    if (pairs) deform_and_break<DIM, ORDER, LAWS, 0, 1, 0>();
-    else deform_and_break<DIM, ORDER, LAWS, 0, 0, 0>();
-  }
-}
-
-/* 'criterion strain': the Green-Lagrange strain E = (F^T F - I)/2 of every
-   local particle, before this step's breaks, from the displacements of all
-   its cached reference partners, broken ones included (with 'correction
-   setup' the segment keeps them): F = I + sum du (x) g, the strain of the
-   displacement field over the whole neighbourhood, an opened crack
-   included. From the intact bonds only, the particles on the two faces of
-   an opening crack would see their own side's (unloading) strain and the
-   inclined bonds across the crack would never break (measured: the crack
-   stays bridged). */
-template <int DIM> void PairTLSPHDamage::trial_strain()
-{
-  double **x = atom->x;
-  double **x0 = x0c;
-  const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++) {
-    const int s = bond_start[i];
-    const int *bj = lean.j + s;
-    const double *bg = lean.g + (bigint) DIM * s;
-    double Fi[9];
-    mat_identity(Fi);
-    const int nseg = bond_start[i + 1] - s;    // intact and broken ('correction setup')
-    for (int m = 0; m < nseg; m++) {
-      const int j = bj[m];
-      for (int r = 0; r < DIM; r++) {
-        const double du = (x[j][r] - x[i][r]) - (x0[j][r] - x0[i][r]);
-        for (int c = 0; c < DIM; c++) Fi[3 * r + c] += du * bg[DIM * m + c];
-      }
-    }
-    green_lagrange(Fi, etr[i]);
+    if (pairs) deform_and_break<DIM, ORDER, LAWS, 0, 1>();
+    else deform_and_break<DIM, ORDER, LAWS, 0, 0>();
   }
 }
 
@@ -674,12 +618,6 @@ void PairTLSPHDamage::unpack_reverse_comm(int n, int *list, double *buf)
 int PairTLSPHDamage::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
 {
   if (comm_stage == 0) return PairTLSPH::pack_forward_comm(n, list, buf, pbc_flag, pbc);
-  if (comm_stage == 3) {
-    int m = 0;
-    for (int i = 0; i < n; i++)
-      for (int k = 0; k < 9; k++) buf[m++] = etr[list[i]][k];
-    return m;
-  }
   for (int i = 0; i < n; i++) buf[i] = phi[list[i]];
   return n;
 }
@@ -690,16 +628,10 @@ void PairTLSPHDamage::unpack_forward_comm(int n, int first, double *buf)
     PairTLSPH::unpack_forward_comm(n, first, buf);
     return;
   }
-  if (comm_stage == 3) {
-    int m = 0;
-    for (int i = first; i < first + n; i++)
-      for (int k = 0; k < 9; k++) etr[i][k] = buf[m++];
-    return;
-  }
   for (int i = 0; i < n; i++) phi[first + i] = buf[i];
 }
 
 double PairTLSPHDamage::memory_usage()
 {
-  return PairTLSPH::memory_usage() + (3.0 + (continuum ? 9.0 : 0.0)) * nmax_d * sizeof(double);
+  return PairTLSPH::memory_usage() + 3.0 * nmax_d * sizeof(double);
 }

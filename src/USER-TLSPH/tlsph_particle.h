@@ -194,33 +194,6 @@ TLSPH_INLINE bool bond_breaks(const double *xi, const double *xj, const double *
   return st >= s_c;
 }
 
-/* The continuum criterion of tlsph/damage ('criterion strain') for bond
-   i-j: the bond's direction in the reference configuration, X = X_j - X_i,
-   against the mean of the two particles' Green-Lagrange strains E_i, E_j
-   (3x3 row-major, from this step's deformation gradients before any bond
-   broke): the squared stretch that the smoothed strain field gives the bond,
-   lambda^2 = 1 + 2 X.(E_i + E_j)/2.X / |X|^2, reaches (1 + s_c)^2 (lim_up;
-   for a homogeneous deformation lambda is the bond's own stretch + 1, so
-   s_c keeps its meaning). Writes du as bond_breaks does. Symmetric in i and
-   j to the last bit (X -> -X, E_i + E_j = E_j + E_i), so both ends decide
-   alike. (CPU pass of tlsph/damage.) */
-template <int DIM>
-TLSPH_INLINE bool strain_bond_breaks(const double *xi, const double *xj, const double *x0i,
-                                     const double *x0j, const double *Ei, const double *Ej,
-                                     double lim_up, double *du)
-{
-  double X[DIM], r02 = 0.0;
-  for (int d = 0; d < DIM; d++) {
-    X[d] = x0j[d] - x0i[d];
-    du[d] = (xj[d] - xi[d]) - X[d];
-    r02 += X[d] * X[d];
-  }
-  double en = 0.0;
-  for (int a = 0; a < DIM; a++)
-    for (int b = 0; b < DIM; b++) en += X[a] * (Ei[3 * a + b] + Ej[3 * a + b]) * X[b];
-  return r02 + en >= r02 * lim_up;
-}
-
 // the polynomial basis of the corrected gradient
 template <int DIM, int ORDER> struct Basis {
   static constexpr int size = (ORDER == 1) ? DIM : (DIM == 2 ? 5 : 9);
