@@ -21,7 +21,7 @@ export LMP_TLSPH = $(BUILD_ABS)/lmp_tlsph
 export TLSPH_PLUGIN = $(BUILD_ABS)/tlsphplugin.so
 
 .PHONY: all setup configure build run test test-sanitize fuzz bench bench-instructions bench-compare \
-        bench-pareto bench-roofline bench-kokkos kokkos kokkos-cuda clean
+        bench-pareto bench-roofline bench-kokkos kokkos kokkos-cuda kokkos-stock kk-plugin clean
 
 all: build
 
@@ -79,6 +79,17 @@ kokkos:
 # (doc/kokkos-cuda.md; about 50 min the first time on 2 shared cores)
 kokkos-cuda:
 	@TLSPH_JOBS=$(JOBS) bash scripts/build-lammps-plugin.sh kokkos-cuda
+
+# the /kk styles as a plugin (doc/kokkos.md, "Loading the /kk styles as a
+# plugin"): kokkos-stock builds the same KOKKOS LAMMPS without our package
+# (cached like kokkos; about 12 min the first time on 2 cores),
+# kk-plugin the whole package as $(BUILD)/kkplugin/tlsphkkplugin.so for it
+# (about 3 min the first time, then incremental); each prints its path
+kokkos-stock:
+	@TLSPH_JOBS=$(JOBS) bash scripts/build-lammps-plugin.sh kokkos-stock
+
+kk-plugin: setup
+	@TLSPH_JOBS=$(JOBS) bash scripts/build-kk-plugin.sh "$(BUILD_ABS)/kkplugin"
 
 # tlsph/kk against tlsph on the host, side by side in the make-kokkos LAMMPS
 # (bench/kokkos.md; a few minutes)

@@ -40,6 +40,13 @@
 # that target and add Kokkos_INCLUDE_DIRS (/usr/include/trilinos, from the same
 # config file), on a hard-linked copy of the tree, as for bench.
 #
+# `build-lammps-plugin.sh kokkos-stock` builds the same KOKKOS LAMMPS as
+# kokkos (Debian's Kokkos, KOKKOS_PATCH, PLUGIN and PERI) but without our
+# package: a stock KOKKOS LAMMPS, in lammps-kokkos-stock-<source version>/
+# (library liblammps_kokkos_stock.so.0), into which the /kk styles are loaded
+# as a plugin (tlsphkkplugin.so, scripts/build-kk-plugin.sh; doc/kokkos.md,
+# "Loading the /kk styles as a plugin"). Nothing is done when bin/lmp exists.
+#
 # `build-lammps-plugin.sh kokkos-cuda` builds a LAMMPS with KOKKOS for NVIDIA
 # GPUs (Kokkos CUDA backend, Serial on the host), plus PLUGIN and PERI and our
 # package compiled in (as for kokkos), in lammps-kokkos-cuda-<source version>/
@@ -86,7 +93,8 @@ VARIANT=${1:-plugin}
 case "$VARIANT" in
   plugin) EXTRA_PKGS=() ;;
   bench)  EXTRA_PKGS=(-D PKG_MACHDYN=on -D DOWNLOAD_EIGEN3=off) ;;
-  kokkos) EXTRA_PKGS=(-D PKG_KOKKOS=on -D EXTERNAL_KOKKOS=on -D Kokkos_ENABLE_SERIAL=on
+  kokkos|kokkos-stock)
+          EXTRA_PKGS=(-D PKG_KOKKOS=on -D EXTERNAL_KOKKOS=on -D Kokkos_ENABLE_SERIAL=on
                       -D Kokkos_ENABLE_OPENMP=off -D Kokkos_ENABLE_CUDA=off) ;;
   # kokkos-cuda: bundled Kokkos (lib/kokkos, from trilinos), CUDA + Serial;
   # HOPPER90 and TLSPH_CUDA_GENCODE exist through KOKKOS_CUDA_PATCH below
@@ -103,7 +111,7 @@ case "$VARIANT" in
           EXTRA_PKGS=(-D PKG_KOKKOS=on -D EXTERNAL_KOKKOS=off -D DOWNLOAD_KOKKOS=off
                       -D Kokkos_ENABLE_SERIAL=on -D Kokkos_ENABLE_OPENMP=on
                       -D Kokkos_ENABLE_CUDA=off -D BUILD_OMP=on) ;;
-  *) die "unknown variant '$VARIANT' (allowed: plugin, bench, kokkos, kokkos-cuda, kokkos-omp)" ;;
+  *) die "unknown variant '$VARIANT' (allowed: plugin, bench, kokkos, kokkos-stock, kokkos-cuda, kokkos-omp)" ;;
 esac
 # LAMMPS_MACHINE: the variant's name, with '_' for '-' (lmp_kokkos_cuda,
 # liblammps_kokkos_cuda.so.0); the same as the variant for the others
@@ -119,8 +127,8 @@ if [ "$VARIANT" = kokkos-cuda ]; then
   [ -n "$NVCC_VERSION" ] || die "cannot read the version of $CUDA_HOME/bin/nvcc"
 fi
 
-# kokkos: Debian's Kokkos, built and at run time (libtrilinos_kokkoscore.so.13.2)
-if [ "$VARIANT" = kokkos ]; then
+# kokkos, kokkos-stock: Debian's Kokkos, built and at run time (libtrilinos_kokkoscore.so.13.2)
+if [ "$VARIANT" = kokkos ] || [ "$VARIANT" = kokkos-stock ]; then
   kk_pkg=libtrilinos-kokkos-dev
   if [ "$(dpkg-query -W -f='${db:Status-Status}' "$kk_pkg" 2>/dev/null || true)" != installed ]; then
     SUDO=()
@@ -199,7 +207,8 @@ sync_tlsph() {
            "$REPO"/src/USER-TLSPH/kokkos/*.h "$REPO"/src/USER-TLSPH/kokkos/*.cpp; do
     [ -f "$f" ] || continue
     b=$(basename "$f")
-    [ "$b" = tlsph_plugin.cpp ] && continue     # the plugin entry point: not compiled in
+    # the plugin entry points (tlsphplugin.so, tlsphkkplugin.so): not compiled in
+    case "$b" in tlsph_plugin.cpp|tlsph_kk_plugin.cpp) continue ;; esac
     case "$f" in */kokkos/*) dst="$SRC_TREE/src/KOKKOS/$b" ;; *) dst="$SRC_TREE/src/$b" ;; esac
     cmp -s "$f" "$dst" || cp "$f" "$dst"
     printf '%s\n' "$dst" >> "$out"
@@ -246,7 +255,7 @@ if [ ! -x "$LMP" ]; then
 
   BUILD="$PREFIX/build"
   SRC_TREE=$LAMMPS_SOURCE_DIR
-  if [ "$VARIANT" = bench ] || [ "$VARIANT" = kokkos ]; then
+  if [ "$VARIANT" = bench ] || [ "$VARIANT" = kokkos ] || [ "$VARIANT" = kokkos-stock ]; then
     # hard-linked copy of the tree; the one patched file becomes a real copy
     SRC_TREE="$PREFIX/source"
     rm -rf "$SRC_TREE"
@@ -285,7 +294,7 @@ open(p, "w").write(s)
 BENCH_PATCH
     log "patched $f: minimum_image(dx0) after dx0 = x0j - x0i (the only change)"
   fi
-  if [ "$VARIANT" = kokkos ]; then
+  if [ "$VARIANT" = kokkos ] || [ "$VARIANT" = kokkos-stock ]; then
     patch_file cmake/Modules/Packages/KOKKOS.cmake "another LAMMPS version?" <<'KOKKOS_PATCH'
 import sys
 p = sys.argv[1]

@@ -27,6 +27,18 @@ not a silent fall-back to the CPU style.
                    written by the CPU styles is read by /kk; each continued run equals
                    the CPU-written, CPU-read one to TOL (the /kk step is bitwise the
                    CPU newton-off step, used here as the CPU reference).
+  --case plugin    (with --plugin) `plugin list` after `plugin load` of the /kk
+                   plugin: every style of the CPU plugin (--cpu-plugin, loaded
+                   alone in another run) and the /kk pair and fix styles.
+
+--plugin PATH (tlsphkkplugin.so, scripts/build-kk-plugin.sh): every run, CPU and
+/kk, first does `plugin load PATH` (a wrapper input: plugin load, then include
+the case's input), so the styles come from the plugin; for a LAMMPS without
+the package compiled in (build-lammps-plugin.sh kokkos-stock) or one with it
+(kokkos: the plugin's styles override the built-in ones). The runs have
+TLSPH_KK_PLUGIN_TRACE=1, and every /kk run must log that its pair style's
+compute() and its atom style's grow() come from PATH ("(this plugin)"),
+never "not from this plugin".
 """
 import argparse
 import math
@@ -56,9 +68,13 @@ def lmp_run(args, tag, inp, extra, kk, np=1):
             cmd += ["--allow-run-as-root"]
         cmd += ["-np", str(np)]
     kkflags = ["-k", "on", "t", str(args.threads)] + KK[2:] if kk else []
+    if args.plugin:
+        inp = plugin_input(args, inp)
     cmd += [args.lmp] + kkflags + ["-in", inp, "-log", tag + ".log", "-screen",
                                                "none", "-var", "out", tag] + list(extra)
     env = dict(os.environ, OMP_NUM_THREADS=str(args.threads), OMP_PROC_BIND="false")
+    if args.plugin:
+        env["TLSPH_KK_PLUGIN_TRACE"] = "1"
     p = subprocess.run(cmd, cwd=args.workdir, capture_output=True, text=True,
                        timeout=args.timeout, env=env)
     log = open(os.path.join(args.workdir, tag + ".log")).read() \
@@ -72,9 +88,72 @@ def lmp_run(args, tag, inp, extra, kk, np=1):
         problems.append(m.group(0))
     if re.search(r"\bnan\b|\bNaN\b|-nan", out):
         problems.append("NaN in output")
+    if args.plugin:
+        problems += plugin_origin_problems(args, out, kk)
     if problems:
         print("\n".join(out.splitlines()[-20:]))
     return out, problems
+
+
+def plugin_input(args, inp):
+    """a wrapper input in the workdir: plugin load, then the case's input"""
+    wrapper = os.path.join(args.workdir, "kkplugin_" + os.path.basename(inp))
+    with open(wrapper, "w") as fp:
+        fp.write("plugin load %s\ninclude %s\n" % (args.plugin, inp))
+    return wrapper
+
+
+def plugin_origin_problems(args, out, kk):
+    """with --plugin: the /kk objects' code must come from the plugin"""
+    problems = []
+    if "Loading plugin: Total Lagrangian SPH, KOKKOS by" not in out:
+        problems.append("the plugin did not register pair tlsph/kk")
+    m = re.search(r"^.*not from this plugin.*$", out, re.M)
+    if m:
+        problems.append("code not from the plugin: " + m.group(0))
+    if kk:
+        so = os.path.realpath(args.plugin)
+        for what in (r"pair LAMMPS_NS::PairTLSPH(?:Damage)?Kokkos<Kokkos::Serial>: compute\(\)",
+                     r"atom style LAMMPS_NS::AtomVecPeriKokkos: grow\(\)"):
+            pat = r"tlsph kk plugin: %s from (\S+) \(this plugin\)" % what
+            found = [f for f in re.findall(pat, out) if os.path.realpath(f) == so]
+            if not found:
+                problems.append("no log line '%s from %s (this plugin)'" % (what, so))
+    return problems
+
+
+def case_plugin(args):
+    """plugin list: the /kk plugin registers all the CPU plugin's styles and the /kk ones"""
+    if not args.plugin:
+        return ["--case plugin needs --plugin"]
+    listed = {}
+    for tag, so in (("list_kk", args.plugin), ("list_cpu", args.cpu_plugin)):
+        if not so:
+            continue
+        inp = os.path.join(args.workdir, tag + ".in")
+        with open(inp, "w") as fp:
+            fp.write("plugin load %s\nplugin list\n" % so)
+        p = subprocess.run([args.lmp, "-in", inp, "-log", tag + ".log", "-echo", "none"],
+                           cwd=args.workdir, capture_output=True, text=True, timeout=args.timeout)
+        out = p.stdout + p.stderr
+        listed[tag] = set(re.findall(r"^\s*\d+: (\w+) style plugin (\S+)$", out, re.M))
+        print("%s: %d styles in 'plugin list' (exit %d)" % (tag, len(listed[tag]), p.returncode))
+        if p.returncode != 0 or not listed[tag]:
+            print(out[-3000:])
+            return ["%s: plugin load/list failed" % tag]
+    problems = []
+    want = {("pair", n) for n in ("tlsph/kk", "tlsph/kk/device", "tlsph/kk/host", "tlsph/damage/kk",
+                                  "tlsph/damage/kk/device", "tlsph/damage/kk/host")}
+    want |= {("fix", n + s) for n in ("tlsph/dt/kk", "tlsph/velocity/filter/kk")
+             for s in ("", "/device", "/host")}
+    want |= listed.get("list_cpu", set())
+    missing = sorted(want - listed["list_kk"])
+    print("kk plugin: %d styles, expected at least %d (%d of the CPU plugin): %s"
+          % (len(listed["list_kk"]), len(want), len(listed.get("list_cpu", ())),
+             "ok" if not missing else "missing " + " ".join("%s %s" % m for m in missing)))
+    if missing:
+        problems.append("styles missing from the kk plugin: %s" % missing)
+    return problems
 
 
 def thermo(log):
@@ -145,9 +224,20 @@ def case_forces(args):
 def case_mpi(args):
     # a launcher that gives run_mpi.py's lmp the /kk styles
     wrapper = os.path.join(args.workdir, "lmp_kk.sh")
+    kkflags = " ".join(["-k", "on", "t", str(args.threads)] + KK[2:])
     with open(wrapper, "w") as fp:
-        fp.write('#!/bin/sh\nexec "%s" %s "$@"\n'
-                 % (args.lmp, " ".join(["-k", "on", "t", str(args.threads)] + KK[2:])))
+        if args.plugin:
+            # -in FILE becomes a wrapper input in the current directory (one
+            # per rank, renamed into place): plugin load, then include FILE
+            fp.write('#!/bin/bash\na=()\nwhile [ $# -gt 0 ]; do\n'
+                     '  if [ "$1" = -in ] && [ $# -ge 2 ]; then\n'
+                     '    w="kkplugin_$(basename "$2")"\n'
+                     '    printf "plugin load %%s\\ninclude %%s\\n" "%s" "$2" > "$w.$$" && mv -f "$w.$$" "$w"\n'
+                     '    a+=(-in "$w"); shift 2\n'
+                     '  else a+=("$1"); shift; fi\ndone\n'
+                     'exec "%s" %s "${a[@]}"\n' % (args.plugin, args.lmp, kkflags))
+        else:
+            fp.write('#!/bin/sh\nexec "%s" %s "$@"\n' % (args.lmp, kkflags))
     os.chmod(wrapper, 0o755)
     problems = []
     mpi = os.path.join(HERE, "..", "lammps", "mpi")
@@ -318,7 +408,10 @@ def main():
     ap.add_argument("--lmp", required=True, help="the KOKKOS-enabled lmp (build-lammps-plugin.sh kokkos)")
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--workdir", required=True)
-    ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart", "damage"])
+    ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart", "damage", "plugin"])
+    ap.add_argument("--plugin", help="tlsphkkplugin.so: every run loads it first (see above)")
+    ap.add_argument("--cpu-plugin", help="--case plugin: tlsphplugin.so, whose styles the "
+                    "kk plugin must register too")
     ap.add_argument("--options", action="store_true",
                     help="damage case with the pair_style tlsph/damage options family (4 dx) "
                          "and damping linear (the restarts take them from the file)")
@@ -330,8 +423,11 @@ def main():
     os.makedirs(args.workdir, exist_ok=True)
     shutil.copy(MATERIALS, args.workdir)
     args.options = ["-var", "family", "0.004", "-var", "damping", "linear"] if args.options else []
+    for a in ("plugin", "cpu_plugin"):
+        if getattr(args, a):
+            setattr(args, a, os.path.abspath(getattr(args, a)))
     problems = {"forces": case_forces, "mpi": case_mpi, "restart": case_restart,
-                "damage": case_damage}[args.case](args)
+                "damage": case_damage, "plugin": case_plugin}[args.case](args)
     if problems:
         print("FAILED:\n  " + "\n  ".join(problems))
         return 1
