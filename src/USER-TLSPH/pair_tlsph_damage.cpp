@@ -721,8 +721,11 @@ template <int DIM> int PairTLSPHDamage::particle_failure()
         }
         const double tn = std::sqrt(T[0] * T[0] + T[1] * T[1]);
         if (tn > 0.0) {
-          N[0] = -T[1] / tn;
-          N[1] = T[0] / tn;
+          // the sign as principal<2> gives it (N_x >= 0), so that the side
+          // a failed particle keeps is mirror-symmetric
+          const double sgn = (T[1] > 0.0 || (T[1] == 0.0 && T[0] < 0.0)) ? -1.0 : 1.0;
+          N[0] = sgn * -T[1] / tn;
+          N[1] = sgn * T[0] / tn;
           N[2] = 0.0;
         }
       }
