@@ -53,6 +53,39 @@ struct ComputeEntry {
   Modify::ComputeCreator create;
 };
 
+// the creator in the plugin record: pair styles have the one-argument form
+void set_creator(lammpsplugin_t &p, Force::PairCreator c)
+{
+  p.creator.v1 = (lammpsplugin_factory1 *) c;
+}
+void set_creator(lammpsplugin_t &p, Modify::FixCreator c)
+{
+  p.creator.v2 = (lammpsplugin_factory2 *) c;
+}
+void set_creator(lammpsplugin_t &p, Modify::ComputeCreator c)
+{
+  p.creator.v2 = (lammpsplugin_factory2 *) c;
+}
+
+// registers one table of styles of one category through LAMMPS's plugin
+// registration function
+template <class Entry, size_t N>
+void register_styles(const Entry (&table)[N], const char *style, void *handle, void *regfunc,
+                     void *lmp)
+{
+  lammpsplugin_t plugin;
+  plugin.version = LAMMPS_VERSION;
+  plugin.author = "USER-TLSPH developers";
+  plugin.handle = handle;
+  plugin.style = style;
+  for (const auto &s : table) {
+    plugin.name = s.name;
+    plugin.info = s.info;
+    set_creator(plugin, s.create);
+    ((lammpsplugin_regfunc) regfunc)(&plugin, lmp);
+  }
+}
+
 const PairEntry pair_styles[] = {
     {"tlsph", "Total Lagrangian SPH for elastic solids", &pair_creator<PairTLSPH>},
     {"tlsph/damage", "Total Lagrangian SPH with critical-stretch bond damage",
@@ -110,31 +143,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
                      "USER-TLSPH plugin was compiled against the headers of LAMMPS {} but is "
                      "loaded into LAMMPS {}: build it against the matching source",
                      LAMMPS_VERSION, host->version);
-  auto register_plugin = (lammpsplugin_regfunc) regfunc;
-  lammpsplugin_t plugin;
-  plugin.version = LAMMPS_VERSION;
-  plugin.author = "USER-TLSPH developers";
-  plugin.handle = handle;
-
-  plugin.style = "pair";
-  for (const auto &s : pair_styles) {
-    plugin.name = s.name;
-    plugin.info = s.info;
-    plugin.creator.v1 = (lammpsplugin_factory1 *) s.create;
-    (*register_plugin)(&plugin, lmp);
-  }
-  plugin.style = "fix";
-  for (const auto &s : fix_styles) {
-    plugin.name = s.name;
-    plugin.info = s.info;
-    plugin.creator.v2 = (lammpsplugin_factory2 *) s.create;
-    (*register_plugin)(&plugin, lmp);
-  }
-  plugin.style = "compute";
-  for (const auto &s : compute_styles) {
-    plugin.name = s.name;
-    plugin.info = s.info;
-    plugin.creator.v2 = (lammpsplugin_factory2 *) s.create;
-    (*register_plugin)(&plugin, lmp);
-  }
+  register_styles(pair_styles, "pair", handle, regfunc, lmp);
+  register_styles(fix_styles, "fix", handle, regfunc, lmp);
+  register_styles(compute_styles, "compute", handle, regfunc, lmp);
 }

@@ -165,25 +165,8 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   // LAMMPS version check)
   tlsph_cpu_lammpsplugin_init(lmp, handle, regfunc);
 
-  auto register_plugin = (lammpsplugin_regfunc) regfunc;
-  lammpsplugin_t plugin;
-  plugin.version = LAMMPS_VERSION;
-  plugin.author = "USER-TLSPH developers";
-  plugin.handle = handle;
-  plugin.style = "pair";
-  for (const auto &s : kk_pair_styles) {
-    plugin.name = s.name;
-    plugin.info = s.info;
-    plugin.creator.v1 = (lammpsplugin_factory1 *) s.create;
-    (*register_plugin)(&plugin, lmp);
-  }
-  plugin.style = "fix";
-  for (const auto &s : kk_fix_styles) {
-    plugin.name = s.name;
-    plugin.info = s.info;
-    plugin.creator.v2 = (lammpsplugin_factory2 *) s.create;
-    (*register_plugin)(&plugin, lmp);
-  }
+  register_styles(kk_pair_styles, "pair", handle, regfunc, lmp);
+  register_styles(kk_fix_styles, "fix", handle, regfunc, lmp);
 
   // atom styles: not a plugin category of this LAMMPS, into avec_map directly
   auto avec_map = host->atom->avec_map;
@@ -192,8 +175,8 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
       if (host->comm->me == 0)
         host->error->warning(FLERR, "Overriding built-in atom style {} from plugin", s.name);
     } else if (host->comm->me == 0) {
-      utils::logmesg(host, "Loading plugin: atom style {} (Atom::avec_map) by {}\n", s.name,
-                     plugin.author);
+      utils::logmesg(host, "Loading plugin: atom style {} (Atom::avec_map) by USER-TLSPH "
+                           "developers\n", s.name);
     }
     (*avec_map)[s.name] = s.create;
   }
