@@ -228,7 +228,8 @@ def main():
     L.append("|---|---|---|---|---|---|---|---|---|---|")
     onset = {}
     for n, lv, r in rows_r:
-        if r and lv.get("Gc") == 3.0 and "nu0.2" in n and "fam" not in n and "rate" not in n:
+        if (r and lv.get("Gc") == 3.0 and "nu0.2" in n and "fam" not in n and "rate" not in n
+                and n.startswith("ramp-h")):    # the stretch criterion only
             onset.setdefault(round(lv["hdx"], 2), []).append(r["G_onset"])
     curves = {}
     for n, lv, r in rows_s:
