@@ -40,18 +40,6 @@
 #              pure-shear strip (bench/toughness.sh, doc/toughness.md):
 #              1.70 for the steel (nu 0.3), 1.47 for the glass (nu 0.2)
 #   h2-calibrated  the same with h = 2 dx (gmodel 0.81 steel, 0.75 glass)
-#   particle   'criterion particle' (experimental, at the commit that added it;
-#              removed after the measurement): a particle fails when the
-#              principal Green strain of its intact bonds reaches the s_c
-#              strain, and every bond across its crack segment (through the
-#              particle, normal to the principal direction of the kernel-mean
-#              strain over its neighbourhood, half-length h) breaks; G_c given /
-#              gmodel, gmodel from the strip (bench/toughness.sh: 3.375 steel,
-#              2.81 glass)
-#   particle-own-hoop  the same with the crack direction of the largest hoop
-#              strain about the particle (2D)
-#   particle-mean  failure on the kernel-mean strain too (gmodel 8.26 / 6.41)
-#   particle-hoop  failure on the mean strain, direction of the largest hoop strain
 #   kcoef      one coefficient set for both decks: the Kalthoff deck's
 #              (alpha 0.09, alpha_d 3.1, gamma 0, filter 0.65 0.1), h = 1.33 dx
 # Runs are resumable: a finished case (its log ends with the wall time) is
@@ -80,13 +68,13 @@ SCANS="scan-0.03-0.4-0.5-0.5-1.0 scan-0.03-0.4-0.5-0.5-0.0 scan-0.03-0.4-0.65-0.
 if [ "${settings[0]}" = all ]; then
   # shellcheck disable=SC2086
   {
-    NO_REPORT=1 bash "$0" thesis h2 common calibrated particle particle-own-hoop particle-mean particle-hoop
+    NO_REPORT=1 bash "$0" thesis h2 common calibrated
     KDX="1.67 1.0" NO_REPORT=1 bash "$0" family4 linear h2-calibrated
     KDX="" NO_REPORT=1 bash "$0" load2 load-1.25 load-1.5 load-1.75
     KDX="1.0" BDX="0.5" NO_REPORT=1 bash "$0" $SCANS
   }
   # shellcheck disable=SC2206
-  settings=(thesis h2 common calibrated particle particle-own-hoop particle-mean particle-hoop family4 linear h2-calibrated load2 load-1.25 load-1.5 load-1.75 $SCANS)
+  settings=(thesis h2 common calibrated family4 linear h2-calibrated load2 load-1.25 load-1.5 load-1.75 $SCANS)
   KDX="" BDX=""
 fi
 
@@ -96,14 +84,6 @@ vars_of() {    # setting [kalthoff|branching]
     h2-calibrated) [ "${2:-}" = kalthoff ] && echo "-var hdx 2.0 -var gmodel 0.81" \
                                             || echo "-var hdx 2.0 -var gmodel 0.75" ;;
     thesis) ;;
-    particle) [ "${2:-}" = kalthoff ] && echo "-var crit particle -var gmodel 3.375" \
-                                       || echo "-var crit particle -var gmodel 2.81" ;;
-    particle-own-hoop) [ "${2:-}" = kalthoff ] && echo "-var crit particle -var cpdir hoop -var gmodel 3.375" \
-                                       || echo "-var crit particle -var cpdir hoop -var gmodel 2.81" ;;
-    particle-mean) [ "${2:-}" = kalthoff ] && echo "-var crit particle -var cpfail mean -var gmodel 8.26" \
-                                       || echo "-var crit particle -var cpfail mean -var gmodel 6.41" ;;
-    particle-hoop) [ "${2:-}" = kalthoff ] && echo "-var crit particle -var cpfail mean -var cpdir hoop -var gmodel 8.26" \
-                                       || echo "-var crit particle -var cpfail mean -var cpdir hoop -var gmodel 6.41" ;;
     h2) echo "-var hdx 2.0" ;;
     gamma1) echo "-var gamma 1.0" ;;
     conservative) echo "-var gamma 1.0 -var hg conservative" ;;
@@ -117,7 +97,7 @@ vars_of() {    # setting [kalthoff|branching]
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis particle particle-own-hoop particle-mean particle-hoop calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }

@@ -56,21 +56,6 @@ for o in "1 0" "3 1" "2 1" "3 2" "1 1"; do
   CASES+=("orient-h2-o$1$2|-var dx $D05 -var hdx 2 -var oa $1 -var ob $2")
   CASES+=("orient-fam4-o$1$2|-var dx $D05 -var famdx 4 -var oa $1 -var ob $2")
 done
-# 'criterion particle' (experimental; variants: failure test own/mean strain,
-# direction mean/hoop; doc/toughness.md)
-for v in "cp own mean" "cpoh own hoop" "cpm mean mean" "cph mean hoop"; do
-  set -- $v
-  for o in "1 0" "3 1" "2 1" "3 2" "1 1"; do
-    set -- $v $o
-    CASES+=("orient-$1-o$4$5|-var dx $D05 -var crit particle -var cpfail $2 -var cpdir $3 -var oa $4 -var ob $5")
-  done
-done
-for v in "cp own" "cpm mean"; do
-  set -- $v
-  CASES+=("ramp-$1-nu0.2-dx0.5|-var dx $D05 -var crit particle -var cpfail $2")
-  CASES+=("ramp-$1-nu0.2-dx0.333|-var dx $D033 -var crit particle -var cpfail $2")
-  CASES+=("ramp-$1-steel-dx0.5|-var dx $D05 $STEEL -var crit particle -var cpfail $2")
-done
 for f in 1.25 2; do
   CASES+=("run-h1.33-nu0.2-dx0.333-f$f|-var dx $D033 -var G0 $("$PY" -c "print(round($f*4.41, 4))")")
 done

@@ -16,9 +16,7 @@
 #include "tlsph_pair_terms.h"
 #include "update.h"
 
-#include <array>
 #include <cmath>
-#include <vector>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -28,16 +26,11 @@ PairTLSPHDamage::PairTLSPHDamage(LAMMPS *lmp) : PairTLSPH(lmp)
 {
   alpha_d = 1.0;
   absolute = 0;
-  planes = 0;
-  segment = 1.0;
   rebuild = 0;
   family = 0.0;
   damping_linear = 0;
   nmax_d = 0;
   phi = phis = alphas = nullptr;
-  pcr = pE = nullptr;
-  direction_mode = 1;
-  failure_mean = 0;
   comm_stage = 0;
   nbroken_local = 0;
   order = 1;
@@ -48,13 +41,10 @@ PairTLSPHDamage::~PairTLSPHDamage()
   memory->destroy(phi);
   memory->destroy(phis);
   memory->destroy(alphas);
-  memory->destroy(pcr);
-  memory->destroy(pE);
 }
 
 /* ----------------------------------------------------------------------
-   pair_style tlsph/damage (keywords of tlsph) [alpha_d A] [criterion tension|absolute|particle]
-     [failure own|mean] [direction own|mean|hoop] [segment S]   ('criterion particle')
+   pair_style tlsph/damage (keywords of tlsph) [alpha_d A] [criterion tension|absolute]
      [correction rebuild|setup] [family R] [damping step|linear] [precrack x1 y1 x2 y2 | x1 y1 z1 x2 y2 z2 x3 y3 z3] ...
 ------------------------------------------------------------------------- */
 
@@ -64,10 +54,6 @@ void PairTLSPHDamage::settings(int narg, char **arg)
   bool have_alpha_d = false, have_gradient = false;
   double alpha_d_value = 0.0;
   absolute = 0;
-  planes = 0;
-  segment = 1.0;
-  direction_mode = 1;
-  failure_mean = 0;
   family = 0.0;
   damping_linear = 0;
   rebuild = 0;    // 'setup' (the thesis): measured better on Kalthoff-Winkler, see doc
@@ -85,39 +71,11 @@ void PairTLSPHDamage::settings(int narg, char **arg)
       iarg += 2;
     } else if (key == "criterion") {
       if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: criterion needs a value");
-      absolute = planes = 0;
       if (strcmp(arg[iarg + 1], "tension") == 0) absolute = 0;
       else if (strcmp(arg[iarg + 1], "absolute") == 0) absolute = 1;
-      else if (strcmp(arg[iarg + 1], "particle") == 0) planes = 1;
       else
         error->all(FLERR, "pair_style tlsph/damage: criterion must be 'tension' or 'absolute', "
-                          "got '{}' (experimental: 'particle')", arg[iarg + 1]);
-      iarg += 2;
-    } else if (key == "direction") {
-      if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: direction needs a value");
-      if (strcmp(arg[iarg + 1], "own") == 0) direction_mode = 0;
-      else if (strcmp(arg[iarg + 1], "mean") == 0) direction_mode = 1;
-      else if (strcmp(arg[iarg + 1], "hoop") == 0) direction_mode = 2;
-      else
-        error->all(FLERR, "pair_style tlsph/damage: direction must be 'own', 'mean' or 'hoop', "
                           "got '{}'", arg[iarg + 1]);
-      if (direction_mode == 2 && d != 2)
-        error->all(FLERR, "pair_style tlsph/damage: direction hoop is 2D only");
-      iarg += 2;
-    } else if (key == "failure") {
-      if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: failure needs a value");
-      if (strcmp(arg[iarg + 1], "own") == 0) failure_mean = 0;
-      else if (strcmp(arg[iarg + 1], "mean") == 0) failure_mean = 1;
-      else
-        error->all(FLERR, "pair_style tlsph/damage: failure must be 'own' or 'mean', got '{}'",
-                   arg[iarg + 1]);
-      iarg += 2;
-    } else if (key == "segment") {
-      if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: segment needs a value");
-      segment = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
-      if (!(segment > 0.0 && segment <= 2.0))
-        error->all(FLERR, "pair_style tlsph/damage: segment must be in (0, 2] (crack segment "
-                          "half-length in units of h), got {}", arg[iarg + 1]);
       iarg += 2;
     } else if (key == "correction") {
       if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: correction needs a value");
@@ -238,9 +196,6 @@ void PairTLSPHDamage::read_material_extra(FILE *fp, int type)
 
 void PairTLSPHDamage::write_restart_settings(FILE *fp)
 {
-  if (planes)
-    error->one(FLERR, "pair_style tlsph/damage: 'criterion particle' is experimental and writes "
-                      "no restart files");
   PairTLSPH::write_restart_settings(fp);
   double v[6] = {alpha_d, (double) absolute, (double) rebuild, (double) cracks.size(), family,
                  (double) damping_linear};
@@ -278,9 +233,6 @@ void PairTLSPHDamage::read_restart_settings(FILE *fp)
 
 void PairTLSPHDamage::init_style()
 {
-  if (planes && family > 0.0)
-    error->all(FLERR, "pair_style tlsph/damage: 'criterion particle' (experimental) takes no "
-                      "'family'");
   correction_from_all_partners = !rebuild;
   PairTLSPH::init_style();
   // 'setup': each particle's correction is frozen once, after the pre-cracks
@@ -322,7 +274,7 @@ void PairTLSPHDamage::init_style()
       stretch_up[a * ntp + b] = (1.0 + s_c) * (1.0 + s_c);
       stretch_down[a * ntp + b] = (s_c < 1.0) ? (1.0 - s_c) * (1.0 - s_c) : 0.0;
     }
-  comm_forward = MAX(comm_forward, planes ? 9 : 1);
+  comm_forward = MAX(comm_forward, 1);
   comm_reverse = MAX(comm_reverse, 1);
   nmax_d = 0;
 }
@@ -339,10 +291,6 @@ void PairTLSPHDamage::grow_damage()
   memory->destroy(phi);
   memory->destroy(phis);
   memory->destroy(alphas);
-  memory->destroy(pcr);
-  memory->destroy(pE);
-  if (planes) memory->create(pcr, nmax_d, 4, "tlsph/damage:pcr");
-  if (planes) memory->create(pE, nmax_d, 9, "tlsph/damage:pE");
   memory->create(phi, nmax_d, "tlsph/damage:phi");
   memory->create(phis, nmax_d, "tlsph/damage:phis");
   memory->create(alphas, nmax_d, "tlsph/damage:alpha");
@@ -463,7 +411,7 @@ void PairTLSPHDamage::recorrect(int i)
    of a bond compute the same stretch from the same positions (ghosts are
    current at this point), so both drop it. One pass over the bond cache
    instead of a breaking pass and a deformation pass. */
-template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS, int CP>
+template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS>
 void PairTLSPHDamage::deform_and_break()
 {
   double **x = atom->x;
@@ -487,7 +435,6 @@ void PairTLSPHDamage::deform_and_break()
     double Fa[DIM * DIM];
     for (int k = 0; k < DIM * DIM; k++) Fa[k] = 0.0;
     bool changed = false;
-    if (CP) failed_partners(i);
     for (int m = 0; m < n;) {
       const int j = bj[m];
       const double *xj = x[j], *x0j = x0[j];
@@ -496,15 +443,8 @@ void PairTLSPHDamage::deform_and_break()
       const double lim_up = PAIRS ? up[ti + tj] * (1.0 - 1.0e-10) : up0;
       const double lim_down = ABS ? (PAIRS ? down[ti + tj] * (1.0 + 1.0e-10) : down0) : 0.0;
       double du[3];
-      bool breaks;
-      if (CP) {
-        for (int d = 0; d < DIM; d++) du[d] = (xj[d] - xi[d]) - (x0j[d] - x0i[d]);
-        breaks = !pfail.empty() && plane_cuts(i, j);
-      } else {
-        breaks = TLSPH::bond_breaks<DIM, ABS>(xi, xj, x0i, x0j, lim_up, lim_down,
-                                              MIN(sc[type[i]], sc[tj]), du);
-      }
-      if (breaks) {
+      if (TLSPH::bond_breaks<DIM, ABS>(xi, xj, x0i, x0j, lim_up, lim_down,
+                                       MIN(sc[type[i]], sc[tj]), du)) {
         bonds->state[i][lean.k[s + m]] = FixTLSPHBonds::BROKEN;
         nbroken_local++;
         // move the bond behind the intact ones (it stays in the segment:
@@ -546,246 +486,13 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPHDamage::dispatch_break()
   // one limit for all type pairs unless the types' critical stretches differ
   bool pairs = false;
   for (int t = 2; t <= atom->ntypes; t++) pairs = pairs || (sc[t] != sc[1]);
-  if (planes) {
-    // which particles fail this step, with their crack normals, ghosts included
-    particle_failure<DIM>();
-    comm_stage = 3;
-    comm->forward_comm_pair(this);
-    comm_stage = 0;
-    deform_and_break<DIM, ORDER, LAWS, 0, 0, 1>();
-  } else if (absolute) {
-    if (pairs) deform_and_break<DIM, ORDER, LAWS, 1, 1, 0>();
-    else deform_and_break<DIM, ORDER, LAWS, 1, 0, 0>();
+  if (absolute) {
+    if (pairs) deform_and_break<DIM, ORDER, LAWS, 1, 1>();
+    else deform_and_break<DIM, ORDER, LAWS, 1, 0>();
   } else {
-    if (pairs) deform_and_break<DIM, ORDER, LAWS, 0, 1, 0>();
-    else deform_and_break<DIM, ORDER, LAWS, 0, 0, 0>();
+    if (pairs) deform_and_break<DIM, ORDER, LAWS, 0, 1>();
+    else deform_and_break<DIM, ORDER, LAWS, 0, 0>();
   }
-}
-
-/* 'criterion particle' (experimental; a cracking-particle treatment after
-   Rabczuk and Belytschko 2004, here with bonds): a particle fails when the
-   largest principal value e1 of its Green-Lagrange strain from its intact
-   bonds at the start of the step ('failure own'; 'failure mean': of the
-   kernel-weighted mean of that strain over the particle and its intact
-   partners) stretches the principal direction to s_c (1 + 2 e1 >= (1 +
-   s_c)^2). Its crack is then the segment (2D) or disc (3D) through X_i
-   normal to N (reference frame) of half-length segment * h, and every
-   intact bond whose reference segment crosses it breaks; bonds of the
-   failed particle itself break towards the side N points to. N: the
-   principal direction of the particle's own strain ('direction own'), of
-   the mean strain ('mean', the default), or normal to the direction of the
-   largest hoop strain about the particle ('hoop', 2D). The direction comes
-   from the continuum strain, not from the lattice's bond directions, and
-   the inclined bonds across an opening crack are cut by geometry (the
-   strain of the intact bonds of a crack face is its own side's, which
-   would leave them). Re-evaluated every step: no state beyond the bonds.
-   Returns the number of local failed particles. */
-// largest principal value e1 of a symmetric 3x3 (row-major; 2D: the upper
-// 2x2) and its unit eigenvector N
-template <int DIM> static void principal(const double *E, double &e1, double *N)
-{
-  N[0] = N[1] = N[2] = 0.0;
-  if (DIM == 2) {
-    const double a = E[0], b = E[1], c = E[4];
-    e1 = 0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b);
-    const double th = 0.5 * std::atan2(2.0 * b, a - c);
-    N[0] = std::cos(th);
-    N[1] = std::sin(th);
-    return;
-  }
-  // trigonometric form; the eigenvector from the rows of E - e1 I (the
-  // largest cross product of two of them)
-  const double p1 = E[1] * E[1] + E[2] * E[2] + E[5] * E[5];
-  const double q = (E[0] + E[4] + E[8]) / 3.0;
-  const double p2 =
-      (E[0] - q) * (E[0] - q) + (E[4] - q) * (E[4] - q) + (E[8] - q) * (E[8] - q) + 2.0 * p1;
-  const double p = std::sqrt(p2 / 6.0);
-  if (!(p > 1.0e-300)) {
-    e1 = q;
-    N[0] = 1.0;
-    return;
-  }
-  double B[9];
-  for (int k = 0; k < 9; k++) B[k] = E[k] / p;
-  B[0] -= q / p;
-  B[4] -= q / p;
-  B[8] -= q / p;
-  double r = 0.5 * mat_det(B);
-  r = r < -1.0 ? -1.0 : (r > 1.0 ? 1.0 : r);
-  e1 = q + 2.0 * p * std::cos(std::acos(r) / 3.0);
-  const double A0[3] = {E[0] - e1, E[1], E[2]}, A1[3] = {E[3], E[4] - e1, E[5]},
-               A2[3] = {E[6], E[7], E[8] - e1};
-  const double *rows[3][2] = {{A0, A1}, {A0, A2}, {A1, A2}};
-  double best = -1.0;
-  for (auto &rw : rows) {
-    const double *u = rw[0], *v = rw[1];
-    const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                         u[0] * v[1] - u[1] * v[0]};
-    const double n2 = dot3(c, c);
-    if (n2 > best) best = n2, N[0] = c[0], N[1] = c[1], N[2] = c[2];
-  }
-  const double nn = std::sqrt(best);
-  if (nn > 0.0)
-    for (int k = 0; k < 3; k++) N[k] /= nn;
-  else
-    N[0] = 1.0, N[1] = N[2] = 0.0;
-}
-
-template <int DIM> int PairTLSPHDamage::particle_failure()
-{
-  double **x = atom->x;
-  double **x0 = x0c;
-  int *type = atom->type;
-  const int nlocal = atom->nlocal;
-  const int ntp = atom->ntypes + 1;
-  // the strain of every particle from its intact bonds
-  for (int i = 0; i < nlocal; i++) {
-    const int s = bond_start[i];
-    const int *bj = lean.j + s;
-    const double *bg = lean.g + (bigint) DIM * s;
-    double Fi[9];
-    mat_identity(Fi);
-    for (int m = 0; m < nbond[i]; m++) {
-      const int j = bj[m];
-      for (int r = 0; r < DIM; r++) {
-        const double du = (x[j][r] - x[i][r]) - (x0[j][r] - x0[i][r]);
-        for (int c = 0; c < DIM; c++) Fi[3 * r + c] += du * bg[DIM * m + c];
-      }
-    }
-    green_lagrange(Fi, pE[i]);
-  }
-  // ... and of the ghosts, for the neighbourhood means and the hoop strain
-  const bool need_mean = failure_mean || direction_mode == 1;
-  if (need_mean || direction_mode == 2) {
-    comm_stage = 4;
-    comm->forward_comm_pair(this);
-    comm_stage = 0;
-  }
-  int nf = 0;
-  std::vector<double> hoop;
-  std::vector<std::array<double, 2>> dir;
-  for (int i = 0; i < nlocal; i++) {
-    const int *bj = lean.j + bond_start[i];
-    double e1, N[3];
-    principal<DIM>(pE[i], e1, N);
-    const double lim = stretch_up[type[i] * ntp + type[i]] * (1.0 - 1.0e-10);
-    bool fails = !failure_mean && (1.0 + 2.0 * e1 >= lim);
-    if (need_mean && (failure_mean || fails)) {
-      // the kernel-weighted mean strain over the particle and its intact
-      // partners (the nonlocal crack direction of the XFEM cohesive-crack
-      // models, Wells and Sluys 2001)
-      const double w0 = kernel.value(0.0);
-      double Em[9], den = w0;
-      for (int k = 0; k < 9; k++) Em[k] = w0 * pE[i][k];
-      for (int m = 0; m < nbond[i]; m++) {
-        const double w = kernel_value(i, m);
-        for (int k = 0; k < 9; k++) Em[k] += w * pE[bj[m]][k];
-        den += w;
-      }
-      for (int k = 0; k < 9; k++) Em[k] /= den;
-      double em, Nm[3];
-      principal<DIM>(Em, em, Nm);
-      if (failure_mean) fails = (1.0 + 2.0 * em >= lim);
-      if (direction_mode == 1)
-        for (int k = 0; k < 3; k++) N[k] = Nm[k];
-    }
-    if (fails && direction_mode == 2) {
-      // 2D: the direction of the largest hoop strain about i (the maximum
-      // tangential stress idea, Erdogan and Sih 1963): over the intact
-      // partners j, the normal strain of E_j across the ray i -> j; the
-      // crack runs along the mean of the rays within 80 % of the largest
-      const int n = nbond[i];
-      hoop.resize(n);
-      dir.resize(n);
-      double best = -1.0e300;
-      int mbest = -1;
-      for (int m = 0; m < n; m++) {
-        double X[3];
-        bond_vector(i, m, X);
-        const double r = std::sqrt(X[0] * X[0] + X[1] * X[1]);
-        const double t[2] = {-X[1] / r, X[0] / r};
-        const double *Ej = pE[bj[m]];
-        hoop[m] = t[0] * t[0] * Ej[0] + 2.0 * t[0] * t[1] * Ej[1] + t[1] * t[1] * Ej[4];
-        dir[m] = {X[0] / r, X[1] / r};
-        if (hoop[m] > best) best = hoop[m], mbest = m;
-      }
-      if (mbest >= 0 && best > 0.0) {
-        double T[2] = {0.0, 0.0};
-        for (int m = 0; m < n; m++) {
-          const double c = dir[m][0] * dir[mbest][0] + dir[m][1] * dir[mbest][1];
-          const double w = hoop[m] - 0.8 * best;
-          if (c > 0.0 && w > 0.0) {
-            T[0] += w * dir[m][0];
-            T[1] += w * dir[m][1];
-          }
-        }
-        const double tn = std::sqrt(T[0] * T[0] + T[1] * T[1]);
-        if (tn > 0.0) {
-          // the sign as principal<2> gives it (N_x >= 0), so that the side
-          // a failed particle keeps is mirror-symmetric
-          const double sgn = (T[1] > 0.0 || (T[1] == 0.0 && T[0] < 0.0)) ? -1.0 : 1.0;
-          N[0] = sgn * -T[1] / tn;
-          N[1] = sgn * T[0] / tn;
-          N[2] = 0.0;
-        }
-      }
-    }
-    pcr[i][0] = fails ? 1.0 : 0.0;
-    for (int k = 0; k < 3; k++) pcr[i][1 + k] = N[k];
-    nf += fails;
-  }
-  return nf;
-}
-
-// the failed particles among i's partners (every state: the full partner
-// list, so that both ends of a bond see the same ones), i itself included
-void PairTLSPHDamage::failed_partners(int i)
-{
-  pfail.clear();
-  if (pcr[i][0] > 0.0) pfail.push_back(i);
-  const tagint *partner = bonds->partner[i];
-  for (int k = 0; k < bonds->npartner[i]; k++) {
-    int p = atom->map(partner[k]);
-    if (p < 0) continue;
-    p = domain->closest_image(i, p);
-    if (pcr[p][0] > 0.0) pfail.push_back(p);
-  }
-}
-
-/* does a crack of a failed particle (pfail, filled for i) cut bond i-j?
-   Decided alike at both ends: only failed particles within 0.999 of the
-   family radius of both ends count (both ends list them), the end points are
-   taken in tag order, and a failed end cuts its bonds towards +N. */
-bool PairTLSPHDamage::plane_cuts(int i, int j) const
-{
-  const tagint *tag = atom->tag;
-  double **x0 = x0c;
-  const double rm2 = (0.999 * family_radius()) * (0.999 * family_radius());
-  const double L2 = (segment * h) * (segment * h);
-  const int A = tag[i] < tag[j] ? i : j, B = tag[i] < tag[j] ? j : i;
-  for (const int p : pfail) {
-    const double *N = pcr[p] + 1;
-    if (tag[p] == tag[i] || tag[p] == tag[j]) {
-      const int q = (tag[p] == tag[i]) ? j : i;
-      const double d[3] = {x0[q][0] - x0[p][0], x0[q][1] - x0[p][1],
-                           dim == 3 ? x0[q][2] - x0[p][2] : 0.0};
-      if (dot3(d, N) > 0.0) return true;
-      continue;
-    }
-    double a[3], b[3];
-    for (int k = 0; k < 3; k++) {
-      a[k] = (k < dim) ? x0[A][k] - x0[p][k] : 0.0;
-      b[k] = (k < dim) ? x0[B][k] - x0[p][k] : 0.0;
-    }
-    if (dot3(a, a) > rm2 || dot3(b, b) > rm2) continue;
-    const double sa = dot3(a, N), sb = dot3(b, N);
-    if (!(sa * sb < 0.0)) continue;
-    const double t = sa / (sa - sb);
-    const double P[3] = {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]),
-                         a[2] + t * (b[2] - a[2])};
-    if (dot3(P, P) <= L2) return true;
-  }
-  return false;
 }
 
 void PairTLSPHDamage::deformation_pass()
@@ -911,18 +618,6 @@ void PairTLSPHDamage::unpack_reverse_comm(int n, int *list, double *buf)
 int PairTLSPHDamage::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
 {
   if (comm_stage == 0) return PairTLSPH::pack_forward_comm(n, list, buf, pbc_flag, pbc);
-  if (comm_stage == 3) {
-    int m = 0;
-    for (int i = 0; i < n; i++)
-      for (int k = 0; k < 4; k++) buf[m++] = pcr[list[i]][k];
-    return m;
-  }
-  if (comm_stage == 4) {
-    int m = 0;
-    for (int i = 0; i < n; i++)
-      for (int k = 0; k < 9; k++) buf[m++] = pE[list[i]][k];
-    return m;
-  }
   for (int i = 0; i < n; i++) buf[i] = phi[list[i]];
   return n;
 }
@@ -931,18 +626,6 @@ void PairTLSPHDamage::unpack_forward_comm(int n, int first, double *buf)
 {
   if (comm_stage == 0) {
     PairTLSPH::unpack_forward_comm(n, first, buf);
-    return;
-  }
-  if (comm_stage == 3) {
-    int m = 0;
-    for (int i = first; i < first + n; i++)
-      for (int k = 0; k < 4; k++) pcr[i][k] = buf[m++];
-    return;
-  }
-  if (comm_stage == 4) {
-    int m = 0;
-    for (int i = first; i < first + n; i++)
-      for (int k = 0; k < 9; k++) pE[i][k] = buf[m++];
     return;
   }
   for (int i = 0; i < n; i++) phi[first + i] = buf[i];

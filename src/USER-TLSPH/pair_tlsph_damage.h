@@ -74,10 +74,6 @@ class PairTLSPHDamage : public PairTLSPH {
  protected:    // (the /kk variant reads these)
   double alpha_d;          // viscosity alpha on damaged particles (phi' > 0)
   int absolute;            // 1: |stretch| >= s_c breaks (thesis Eq. 2.27), 0: tension only
-  int planes;              // 1: 'criterion particle' (experimental): failed particles' crack planes
-  double segment;          // 'criterion particle': crack segment half-length / h
-  int direction_mode;      // 'criterion particle' crack normal: 0 own strain, 1 mean strain, 2 hoop
-  int failure_mean;        // 'criterion particle' failure test: 0 own strain, 1 mean strain
   int rebuild;             // 1: correction rebuilt from intact bonds, 0: kept from setup
   double family;           // radius of the bond family (damage decisions, phi); 0: 2h
   int damping_linear;      // 0: alpha_d where phi' > 0 (thesis Eq. 2.35), 1: alpha + (alpha_d - alpha) phi'
@@ -87,10 +83,7 @@ class PairTLSPHDamage : public PairTLSPH {
 
   int nmax_d;
   double *phi, *phis, *alphas;
-  double **pcr;            // 'criterion particle': failed (0/1) and reference crack normal
-  double **pE;             // 'criterion particle': Green-Lagrange strain from the intact bonds
-  std::vector<int> pfail;  // scratch: failed partners of a particle
-  int comm_stage;          // forward: 0 packed rows (base), 1 damage phi, 3 pcr, 4 pE; 2: reverse, marks
+  int comm_stage;          // forward: 0 packed rows (base), 1 damage phi; 2: reverse, marks
   bigint nbroken_local;    // bonds broken on this rank so far (from this end)
 
   double family_radius() const { return family > 0.0 ? family : 2.0 * h; }
@@ -98,12 +91,8 @@ class PairTLSPHDamage : public PairTLSPH {
   void apply_precracks();
   bool crosses_crack(const double *A, const double *B) const;
   void recorrect(int i);
-  // ABS: absolute criterion; PAIRS: per-type-pair limits (types differ in s_c);
-  // CP: 'criterion particle' (after particle_failure and its communication)
-  template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS, int CP> void deform_and_break();
-  template <int DIM> int particle_failure();
-  void failed_partners(int i);
-  bool plane_cuts(int i, int j) const;
+  // ABS: absolute criterion; PAIRS: per-type-pair limits (types differ in s_c)
+  template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS> void deform_and_break();
   template <int DIM, int ORDER, int LAWS> void dispatch_break();
 };
 
