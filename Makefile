@@ -84,7 +84,7 @@ kokkos-cuda:
 # plugin"): kokkos-stock builds the same KOKKOS LAMMPS without our package
 # (cached like kokkos; about 12 min the first time on 2 cores),
 # kk-plugin the whole package as $(BUILD)/kkplugin/tlsphkkplugin.so for it
-# (about 3 min the first time, then incremental); each prints its path
+# (about 1 min the first time here, then incremental); each prints its path
 kokkos-stock:
 	@TLSPH_JOBS=$(JOBS) bash scripts/build-lammps-plugin.sh kokkos-stock
 
