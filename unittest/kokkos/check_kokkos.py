@@ -300,9 +300,9 @@ def case_restart(args):
     return problems
 
 
-def thermo_column(log, name):
-    """all values of a thermo column"""
-    vals, cols = [], None
+def thermo_rows(log):
+    """all thermo rows of a LAMMPS log text, every block in order: [(columns, [values])]"""
+    rows, cols = [], None
     for line in log.splitlines():
         w = line.split()
         if w[:1] == ["Step"]:
@@ -310,14 +310,17 @@ def thermo_column(log, name):
             continue
         if cols and len(w) == len(cols):
             try:
-                row = [float(x) for x in w]    # a thermo row: numbers only
-            except ValueError:
-                cols = None
+                rows.append((tuple(cols), [float(x) for x in w]))    # numbers only
                 continue
-            vals.append(row[cols.index(name)])
-        elif cols:
-            cols = None    # the thermo block has ended
-    return vals
+            except ValueError:
+                pass
+        cols = None    # the thermo block has ended
+    return rows
+
+
+def thermo_column(log, name):
+    """all values of a thermo column"""
+    return [v[c.index(name)] for c, v in thermo_rows(log) if name in c]
 
 
 def case_damage(args):

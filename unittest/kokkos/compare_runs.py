@@ -19,24 +19,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "lammps", "mpi"))
 from run_mpi import read_dump  # noqa: E402
-
-
-def thermo_rows(path):
-    """all thermo rows of a LAMMPS log: [(columns, [values])]"""
-    rows, cols = [], None
-    for line in open(path, errors="replace"):
-        w = line.split()
-        if w[:1] == ["Step"]:
-            cols = w
-            continue
-        if cols and len(w) == len(cols):
-            try:
-                rows.append((tuple(cols), [float(x) for x in w]))
-                continue
-            except ValueError:
-                pass
-        cols = None
-    return rows
+from check_kokkos import thermo_rows  # noqa: E402
 
 
 def col_rel(a, b):
@@ -74,7 +57,8 @@ def main():
             ids = sorted(ra)
             pairs = [([ra[i][k] for i in ids], [rb[i][k] for i in ids]) for k in range(len(ca))]
         else:
-            ta, tb = thermo_rows(pa), thermo_rows(pb)
+            ta = thermo_rows(open(pa, errors="replace").read())
+            tb = thermo_rows(open(pb, errors="replace").read())
             if [c for c, _ in ta] != [c for c, _ in tb]:
                 problems.append("%s: different thermo rows (%d, %d)" % (rel, len(ta), len(tb)))
                 continue
