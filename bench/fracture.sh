@@ -42,6 +42,15 @@
 #   h2-calibrated  the same with h = 2 dx (gmodel 0.81 steel, 0.75 glass)
 #   kcoef      one coefficient set for both decks: the Kalthoff deck's
 #              (alpha 0.09, alpha_d 3.1, gamma 0, filter 0.65 0.1), h = 1.33 dx
+#   tip        crack-tip tracking (pair_style tlsph/damage criterion tip,
+#              experimental): K_I, K_II from the crack-face displacement
+#              jump, maximum tangential stress direction, Freund's speed,
+#              branching at G >= 2 G_c by +-15 deg ('branch 15'); the
+#              kcoef coefficients in both decks, h = 1.33 dx, G_c as given
+#   tip-nobranch  the same without branching
+#   tip-thesis    tip with each deck's own (thesis) coefficients
+#   tip-hoop   tip with the direction of the largest hoop stress at 2h
+#              ('tipdir hoop', segments of h)
 # Runs are resumable: a finished case (its log ends with the wall time) is
 # kept unless FORCE=1. Wall time: the 0.5 mm Kalthoff case is 80,000
 # particles (about 15 min on a free core), the 0.333 mm plate 36,000 (3-5 min).
@@ -90,6 +99,10 @@ vars_of() {    # setting [kalthoff|branching]
     family4) echo "-var famdx 4" ;;
     common) echo "-var alpha 0.09 -var alpha_d 0.4 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     kcoef) echo "-var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    tip) echo "-var crit tip -var branch 15 -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    tip-nobranch) echo "-var crit tip -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    tip-thesis) echo "-var crit tip -var branch 15" ;;
+    tip-hoop) echo "-var crit tip -var tipdir hoop -var tipseg 1 -var branch 15 -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     linear) echo "-var damping linear -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     load2) echo "-var sigma0 2.0e6" ;;
     load-*) echo "-var sigma0 ${1#load-}e6" ;;    # load-1.5: 1.5 MPa (diagnostic)
@@ -97,7 +110,7 @@ vars_of() {    # setting [kalthoff|branching]
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-nobranch tip-thesis tip-hoop load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }

@@ -17,6 +17,7 @@
 #include "update.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -34,6 +35,10 @@ PairTLSPHDamage::PairTLSPHDamage(LAMMPS *lmp) : PairTLSPH(lmp)
   comm_stage = 0;
   nbroken_local = 0;
   order = 1;
+  tipmode = 0;
+  tip_branch = 0.0;
+  tips_ready = 0;
+  tip_Eprime = tip_Gc = tip_cR = 0.0;
 }
 
 PairTLSPHDamage::~PairTLSPHDamage()
@@ -56,6 +61,11 @@ void PairTLSPHDamage::settings(int narg, char **arg)
   absolute = 0;
   family = 0.0;
   damping_linear = 0;
+  tipmode = 0;
+  tip_branch = 0.0;
+  tip_hoop = 0;
+  tip_seg = 0.0;
+  bool have_branch = false;
   rebuild = 0;    // 'setup' (the thesis): measured better on Kalthoff-Winkler, see doc
   cracks.clear();
   const int d = domain->dimension;
@@ -73,9 +83,32 @@ void PairTLSPHDamage::settings(int narg, char **arg)
       if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: criterion needs a value");
       if (strcmp(arg[iarg + 1], "tension") == 0) absolute = 0;
       else if (strcmp(arg[iarg + 1], "absolute") == 0) absolute = 1;
+      else if (strcmp(arg[iarg + 1], "tip") == 0) tipmode = 1;
       else
-        error->all(FLERR, "pair_style tlsph/damage: criterion must be 'tension' or 'absolute', "
-                          "got '{}'", arg[iarg + 1]);
+        error->all(FLERR, "pair_style tlsph/damage: criterion must be 'tension', 'absolute' or "
+                          "'tip' (experimental), got '{}'", arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "tipdir") {
+      if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: tipdir needs a value");
+      if (strcmp(arg[iarg + 1], "faces") == 0) tip_hoop = 0;
+      else if (strcmp(arg[iarg + 1], "hoop") == 0) tip_hoop = 1;
+      else
+        error->all(FLERR, "pair_style tlsph/damage: tipdir must be 'faces' or 'hoop', got '{}'",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "tipseg") {
+      if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: tipseg needs a value");
+      tip_seg = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "branch") {
+      if (iarg + 1 >= narg)
+        error->all(FLERR, "pair_style tlsph/damage: branch needs a value (half angle in degrees)");
+      const double a = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
+      if (!(a >= 0.0 && a < 90.0))
+        error->all(FLERR, "pair_style tlsph/damage: branch must be in [0, 90) degrees, got {}",
+                   arg[iarg + 1]);
+      tip_branch = a * M_PI / 180.0;
+      have_branch = true;
       iarg += 2;
     } else if (key == "correction") {
       if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: correction needs a value");
@@ -123,6 +156,8 @@ void PairTLSPHDamage::settings(int narg, char **arg)
       iarg += 2;
     }
   }
+  if (have_branch && !tipmode)
+    error->all(FLERR, "pair_style tlsph/damage: branch is a setting of 'criterion tip'");
   PairTLSPH::settings((int) base.size(), base.data());
   // the thesis's fracture model uses the linear correction: keep it the default
   if (!have_gradient) order = 1;
@@ -196,6 +231,9 @@ void PairTLSPHDamage::read_material_extra(FILE *fp, int type)
 
 void PairTLSPHDamage::write_restart_settings(FILE *fp)
 {
+  if (tipmode)
+    error->one(FLERR, "pair tlsph/damage: 'criterion tip' (experimental) cannot be written to a "
+                      "restart file");
   PairTLSPH::write_restart_settings(fp);
   double v[6] = {alpha_d, (double) absolute, (double) rebuild, (double) cracks.size(), family,
                  (double) damping_linear};
@@ -274,6 +312,22 @@ void PairTLSPHDamage::init_style()
       stretch_up[a * ntp + b] = (1.0 + s_c) * (1.0 + s_c);
       stretch_down[a * ntp + b] = (s_c < 1.0) ? (1.0 - s_c) * (1.0 - s_c) : 0.0;
     }
+  if (tipmode) {
+    // only the tips cut bonds: no stretch limit is ever reached
+    for (auto &u : stretch_up) u = 1.0e300;
+    for (auto &w : stretch_down) w = 0.0;
+    const Material &m = mat[1];
+    if (m.orthotropic || Gc[1] <= 0.0)
+      error->all(FLERR, "pair tlsph/damage: 'criterion tip' needs an isotropic type 1 with Gc");
+    for (int t = 2; t <= atom->ntypes; t++)
+      if (mat[t].rho > 0.0 && (mat[t].E != m.E || mat[t].nu != m.nu || mat[t].rho != m.rho))
+        error->all(FLERR, "pair tlsph/damage: 'criterion tip' (experimental) needs one material");
+    // E' (plane stress E, plane strain E / (1 - nu^2)), G_c, and the Rayleigh
+    // speed (Viktorov's approximation c_R = c_s (0.862 + 1.14 nu) / (1 + nu))
+    tip_Eprime = plane_stress ? m.E : m.E / (1.0 - m.nu * m.nu);
+    tip_Gc = Gc[1];
+    tip_cR = sqrt(m.mu / m.rho) * (0.862 + 1.14 * m.nu) / (1.0 + m.nu);
+  }
   comm_forward = MAX(comm_forward, 1);
   comm_reverse = MAX(comm_reverse, 1);
   nmax_d = 0;
@@ -309,27 +363,32 @@ double PairTLSPHDamage::kernel_value(int i, int m) const
    segment (2D) or parallelogram (3D) is broken before the first step
 ------------------------------------------------------------------------- */
 
+/* does the reference bond segment A -> B cross the crack segment P -> R (2D)?
+   Orientations within round-off of 0 count as 0 (tol: relative to
+   |AB| |PR|): a bond through an end point of the segment is cut, one from a
+   particle on the segment's line is not -- decided alike whatever the last
+   bits of the coordinates (on a lattice, the bonds through a notch tip on a
+   line between columns would otherwise be cut or kept by round-off) */
+static bool segment_crossed(const double *A, const double *B, const double *P, const double *R)
+{
+  auto orient = [](const double *a, const double *b, const double *p) {
+    return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+  };
+  const double lab = std::hypot(B[0] - A[0], B[1] - A[1]);
+  const double lpr = std::hypot(R[0] - P[0], R[1] - P[1]);
+  const double tol = 1.0e-9 * lab * lpr;
+  auto snap = [tol](double o) { return std::fabs(o) < tol ? 0.0 : o; };
+  const double o1 = snap(orient(P, R, A)), o2 = snap(orient(P, R, B));
+  const double o3 = snap(orient(A, B, P)), o4 = snap(orient(A, B, R));
+  return o1 * o2 < 0.0 && o3 * o4 <= 0.0;
+}
+
 bool PairTLSPHDamage::crosses_crack(const double *A, const double *B) const
 {
   for (const auto &c : cracks) {
     if (dim == 2) {
       const double P[2] = {c[0], c[1]}, R[2] = {c[2], c[3]};
-      auto orient = [](const double *a, const double *b, const double *p) {
-        return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
-      };
-      // orientations within round-off of 0 count as 0 (tol: relative to
-      // |AB| |PR|): a bond through an end point of the segment is cut, one
-      // from a particle on the segment's line is not -- decided alike
-      // whatever the last bits of the coordinates (on a lattice, the bonds
-      // through a notch tip on a line between columns would otherwise be
-      // cut or kept by round-off)
-      const double lab = std::hypot(B[0] - A[0], B[1] - A[1]);
-      const double lpr = std::hypot(R[0] - P[0], R[1] - P[1]);
-      const double tol = 1.0e-9 * lab * lpr;
-      auto snap = [tol](double o) { return std::fabs(o) < tol ? 0.0 : o; };
-      const double o1 = snap(orient(P, R, A)), o2 = snap(orient(P, R, B));
-      const double o3 = snap(orient(A, B, P)), o4 = snap(orient(A, B, R));
-      if (o1 * o2 < 0.0 && o3 * o4 <= 0.0) return true;
+      if (segment_crossed(A, B, P, R)) return true;
     } else {
       const double O[3] = {c[0], c[1], c[2]};
       const double U[3] = {c[3] - c[0], c[4] - c[1], c[5] - c[2]};
@@ -531,6 +590,7 @@ void PairTLSPHDamage::update_bonds()
       for (int i = 0; i < atom->nlocal; i++) bonds->frozen[i][0] = 0.0;
     build_bond_cache();
   }
+  if (tipmode) grow_tips();
 }
 
 /* ----------------------------------------------------------------------
@@ -634,4 +694,379 @@ void PairTLSPHDamage::unpack_forward_comm(int n, int first, double *buf)
 double PairTLSPHDamage::memory_usage()
 {
   return PairTLSPH::memory_usage() + 3.0 * nmax_d * sizeof(double);
+}
+
+/* ----------------------------------------------------------------------
+   'criterion tip' (experimental, 2D): crack-tip tracking
+------------------------------------------------------------------------- */
+
+// the volume of the particles within radius R of each point (all ranks)
+static void volume_near(LAMMPS *lmp, double **x0, const double *vfrac, int nlocal,
+                        const std::vector<std::array<double, 2>> &pts, double R,
+                        std::vector<double> &vol)
+{
+  std::vector<double> mine(pts.size(), 0.0);
+  for (int i = 0; i < nlocal; i++)
+    for (size_t p = 0; p < pts.size(); p++) {
+      const double dx = x0[i][0] - pts[p][0], dy = x0[i][1] - pts[p][1];
+      if (dx * dx + dy * dy < R * R) mine[p] += vfrac[i];
+    }
+  vol.assign(pts.size(), 0.0);
+  MPI_Allreduce(mine.data(), vol.data(), (int) pts.size(), MPI_DOUBLE, MPI_SUM, lmp->world);
+}
+
+// a pre-crack end is a tip when the body fills at least 3/4 of the disc of
+// radius 2h about it (an end outside the plate, or at its edge, is not)
+void PairTLSPHDamage::init_tips()
+{
+  tips_ready = 1;
+  tips.clear();
+  std::vector<std::array<double, 2>> ends;
+  for (const auto &c : cracks) {
+    if (dim == 2) {
+      ends.push_back({c[0], c[1]});
+      ends.push_back({c[2], c[3]});
+    } else {
+      // 3D: through-thickness cracks only, a parallelogram with one edge
+      // along z; its trace in the xy plane is tracked (the crack surface is
+      // that trace extruded through the thickness)
+      const bool wz = (c[6] == c[0] && c[7] == c[1]), uz = (c[3] == c[0] && c[4] == c[1]);
+      if (!wz && !uz)
+        error->all(FLERR, "pair tlsph/damage: 'criterion tip' in 3D needs pre-cracks through "
+                          "the thickness (a parallelogram with one edge along z)");
+      ends.push_back({c[0], c[1]});
+      if (wz) ends.push_back({c[3], c[4]});
+      else ends.push_back({c[6], c[7]});
+    }
+  }
+  // the depth of the body along z (2D: the thickness in the particle volumes)
+  tip_depth = thickness;
+  if (dim == 3) {
+    double lo = 1.0e300, hi = -1.0e300, vmax = 0.0, g[3];
+    for (int i = 0; i < atom->nlocal; i++) {
+      lo = MIN(lo, x0c[i][2]);
+      hi = MAX(hi, x0c[i][2]);
+      vmax = MAX(vmax, atom->vfrac[i]);
+    }
+    double m[3] = {-lo, hi, vmax};
+    MPI_Allreduce(m, g, 3, MPI_DOUBLE, MPI_MAX, world);
+    tip_depth = g[1] + g[0] + cbrt(g[2]);
+  }
+  std::vector<double> vol;
+  volume_near(lmp, x0c, atom->vfrac, atom->nlocal, ends, 2.0 * h, vol);
+  const double full = M_PI * 4.0 * h * h * tip_depth;
+  for (size_t e = 0; e < ends.size(); e++) {
+    if (vol[e] < 0.75 * full) continue;
+    const auto &E = ends[e], &O = ends[e ^ 1];
+    CrackTip tp;
+    tp.path = {O, E};
+    const double L = std::hypot(E[0] - O[0], E[1] - O[1]);
+    tp.t[0] = (E[0] - O[0]) / L;
+    tp.t[1] = (E[1] - O[1]) / L;
+    tp.seg = tp.own = 0.0;
+    tp.alive = 1;
+    tp.growing = 0;
+    tips.push_back(tp);
+    if (comm->me == 0)
+      utils::logmesg(lmp, "pair tlsph/damage: crack tip at ({:.6g}, {:.6g}), direction ({:.4f}, "
+                          "{:.4f}); E' {:.6g} G_c {:.6g} c_R {:.6g}\n", E[0], E[1], tp.t[0], tp.t[1],
+                     tip_Eprime, tip_Gc, tip_cR);
+  }
+}
+
+// cut every intact bond of a local particle whose reference segment crosses A -> B
+void PairTLSPHDamage::cut_path(const double *A, const double *B)
+{
+  const int nlocal = atom->nlocal;
+  const double reach = family_radius() + std::hypot(B[0] - A[0], B[1] - A[1]);
+  const double lo[2] = {MIN(A[0], B[0]) - reach, MIN(A[1], B[1]) - reach};
+  const double hi[2] = {MAX(A[0], B[0]) + reach, MAX(A[1], B[1]) + reach};
+  for (int i = 0; i < nlocal; i++) {
+    const double *Xi = x0c[i];
+    if (Xi[0] < lo[0] || Xi[0] > hi[0] || Xi[1] < lo[1] || Xi[1] > hi[1]) continue;
+    const int s = bond_start[i];
+    int *bj = lean.j + s;
+    double *bg = lean.g + (bigint) dim * s;
+    int n = nbond[i];
+    bool changed = false;
+    for (int m = 0; m < n;) {
+      if (!segment_crossed(Xi, x0c[bj[m]], A, B)) {
+        m++;
+        continue;
+      }
+      bonds->state[i][lean.k[s + m]] = FixTLSPHBonds::BROKEN;
+      nbroken_local++;
+      if (!rebuild)
+        for (int d = 0; d < dim; d++) sumg[i][d] -= bg[dim * m + d];
+      if (dim == 2) TLSPH::drop_bond<2>(bj, bg, lean.w + 2 * (bigint) s, lean.k + s, m, nlead[i], n);
+      else TLSPH::drop_bond<3>(bj, bg, lean.w + 2 * (bigint) s, lean.k + s, m, nlead[i], n);
+      changed = true;
+    }
+    if (changed) {
+      nbond[i] = n;
+      if (rebuild) recorrect(i);
+    }
+  }
+}
+
+/* Each step, for every live tip: the stress intensity factors from the
+   displacement jump across the faces behind it (displacement correlation:
+   du = 8 K sqrt(r / 2 pi) / E', sampled at r = 2h .. 5h along its path and
+   extrapolated to r = 0), the maximum tangential stress direction and
+   equivalent K (Erdogan & Sih), and, once G = K_eq^2 / E' reaches G_c, an
+   advance at v = c_R (1 - G_c / G) (Freund's equation of motion). The
+   direction is chosen at the start of a segment of length h and kept along
+   it. With 'branch A' a tip whose G reaches 2 G_c (the flux that can feed
+   two cracks) splits into two at +-A once it has grown 6h on its own. */
+void PairTLSPHDamage::grow_tips()
+{
+  if (!tips_ready) init_tips();
+  const int nt = tips.size();
+  if (!nt) return;
+  constexpr int NK = 4;
+  const double rho = 1.5 * h;
+  double rk[NK];
+  for (int k = 0; k < NK; k++) rk[k] = (1.5 + 0.5 * k) * h;
+  // a segment keeps its direction until the samples lie on it
+  const double seglen = tip_seg > 0.0 ? tip_seg * h : rk[NK - 1] + rho;
+  // sample points and the face normal there, walking back along each path
+  std::vector<double> Q(nt * NK * 2), T(nt * NK * 2);
+  std::vector<int> ok(nt * NK, 0);
+  for (int a = 0; a < nt; a++) {
+    const CrackTip &tp = tips[a];
+    if (!tp.alive) continue;
+    for (int k = 0; k < NK; k++) {
+      double left = rk[k];
+      for (int v = (int) tp.path.size() - 1; v > 0; v--) {
+        const auto &p1 = tp.path[v], &p0 = tp.path[v - 1];
+        const double L = std::hypot(p1[0] - p0[0], p1[1] - p0[1]);
+        if (L <= 0.0) continue;
+        if (L >= left) {
+          const double tx = (p1[0] - p0[0]) / L, ty = (p1[1] - p0[1]) / L;
+          Q[2 * (a * NK + k)] = p1[0] - left * tx;
+          Q[2 * (a * NK + k) + 1] = p1[1] - left * ty;
+          T[2 * (a * NK + k)] = tx;
+          T[2 * (a * NK + k) + 1] = ty;
+          ok[a * NK + k] = 1;
+          break;
+        }
+        left -= L;
+      }
+    }
+  }
+  // kernel-weighted mean displacement on each side (6 sums per sample)
+  std::vector<double> mine(nt * NK * 6, 0.0), sums(nt * NK * 6, 0.0);
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++) {
+    const double *X = x0c[i];
+    for (int q = 0; q < nt * NK; q++) {
+      if (!ok[q]) continue;
+      const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
+      const double r2 = dx * dx + dy * dy;
+      if (r2 >= rho * rho) continue;
+      const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
+      // + side: to the left of the path (n = t rotated by +90 deg)
+      const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
+      if (dn == 0.0) continue;
+      double *S = mine.data() + 6 * q + (dn > 0.0 ? 0 : 3);
+      S[0] += w;
+      S[1] += w * (x[i][0] - X[0]);
+      S[2] += w * (x[i][1] - X[1]);
+    }
+  }
+  MPI_Allreduce(mine.data(), sums.data(), nt * NK * 6, MPI_DOUBLE, MPI_SUM, world);
+
+  const double dt = update->dt;
+  // per tip: G of the maximum tangential stress direction, and the direction
+  // a new segment would take (nd)
+  std::vector<double> Gt(nt, 0.0), nd(2 * nt, 0.0), Kt(2 * nt, 0.0), tht(nt, 0.0);
+  std::vector<int> want;    // tips that start a new segment this step
+  for (int a = 0; a < nt; a++) {
+    CrackTip &tp = tips[a];
+    if (!tp.alive) continue;
+    // du / sqrt(r) = c1 + c3 r (the r^1/2 and r^3/2 terms of the jump)
+    double sr = 0, sr2 = 0, syn = 0, syt = 0, srn = 0, srt = 0;
+    double fr[2] = {0.0, 0.0};    // the faces' mean direction: the frame of K_I, K_II
+    int cnt = 0;
+    for (int k = 0; k < NK; k++) {
+      const int q = a * NK + k;
+      const double *S = sums.data() + 6 * q;
+      if (!ok[q] || !(S[0] > 0.0) || !(S[3] > 0.0)) continue;
+      const double dux = S[1] / S[0] - S[4] / S[3], duy = S[2] / S[0] - S[5] / S[3];
+      const double tx = T[2 * q], ty = T[2 * q + 1];
+      fr[0] += tx;
+      fr[1] += ty;
+      const double yn = (-ty * dux + tx * duy) / sqrt(rk[k]);
+      const double yt = (tx * dux + ty * duy) / sqrt(rk[k]);
+      sr += rk[k];
+      sr2 += rk[k] * rk[k];
+      syn += yn;
+      syt += yt;
+      srn += rk[k] * yn;
+      srt += rk[k] * yt;
+      cnt++;
+    }
+    if (cnt == 0) continue;
+    double cn = syn / cnt, ct = syt / cnt;
+    if (cnt >= 2) {
+      const double det = cnt * sr2 - sr * sr;
+      cn = (sr2 * syn - sr * srn) / det;
+      ct = (sr2 * syt - sr * srt) / det;
+    }
+    const double f = tip_Eprime / 8.0 * sqrt(2.0 * M_PI);
+    const double KI = MAX(f * cn, 0.0);    // closed faces: no opening mode
+    const double KII = f * ct;
+    // maximum tangential stress: kink angle and equivalent K
+    double th = 0.0;
+    if (fabs(KII) > 1.0e-12 * (fabs(KI) + fabs(KII)))
+      th = 2.0 * atan((KI - sqrt(KI * KI + 8.0 * KII * KII)) / (4.0 * KII));
+    const double c2 = cos(0.5 * th);
+    const double Keq = c2 * (KI * c2 * c2 - 1.5 * KII * sin(th));
+    Gt[a] = (Keq > 0.0) ? Keq * Keq / tip_Eprime : 0.0;
+    Kt[2 * a] = KI;
+    Kt[2 * a + 1] = KII;
+    tht[a] = th;
+    if (Gt[a] < tip_Gc || tp.seg != 0.0) continue;
+    // a new segment: the kink angle turns the direction of the faces that
+    // K was measured on (not the last segment's, which may already have turned)
+    const double fl = std::hypot(fr[0], fr[1]);
+    const double c = cos(th), sn = sin(th), f0 = fr[0] / fl, f1 = fr[1] / fl;
+    nd[2 * a] = c * f0 - sn * f1;
+    nd[2 * a + 1] = sn * f0 + c * f1;
+    want.push_back(a);
+  }
+
+  // 'tipdir hoop': the new direction where the hoop stress on the circle of
+  // radius 2h about the tip is largest (within +-80 deg of the current
+  // direction; stresses interpolated over discs of radius h, which never
+  // reach the faces behind the tip)
+  if (tip_hoop && !want.empty()) {
+    constexpr int NA = 33;
+    const double rs = 2.0 * h, rh = h, dth = 5.0 * M_PI / 180.0;
+    const int nw = want.size();
+    std::vector<double> hm(nw * NA * 4, 0.0), hs(nw * NA * 4, 0.0), ang(nw * NA);
+    for (int w = 0; w < nw; w++) {
+      const CrackTip &tp = tips[want[w]];
+      const double phi0 = atan2(tp.t[1], tp.t[0]);
+      for (int j = 0; j < NA; j++) ang[w * NA + j] = phi0 + (j - NA / 2) * dth;
+    }
+    for (int i = 0; i < nlocal; i++) {
+      const double *X = x0c[i];
+      bool have = false;
+      double sig[9];
+      for (int w = 0; w < nw; w++) {
+        const auto &P = tips[want[w]].path.back();
+        const double ex = X[0] - P[0], ey = X[1] - P[1];
+        if (ex * ex + ey * ey > (rs + rh) * (rs + rh)) continue;
+        for (int j = 0; j < NA; j++) {
+          const double cx = P[0] + rs * cos(ang[w * NA + j]), cy = P[1] + rs * sin(ang[w * NA + j]);
+          const double r2 = (X[0] - cx) * (X[0] - cx) + (X[1] - cy) * (X[1] - cy);
+          if (r2 >= rh * rh) continue;
+          if (!have) {
+            cauchy_stress(i, sig);
+            have = true;
+          }
+          const double wt = (1.0 - r2 / (rh * rh)) * (1.0 - r2 / (rh * rh));
+          double *H = hm.data() + 4 * (w * NA + j);
+          H[0] += wt;
+          H[1] += wt * sig[0];
+          H[2] += wt * sig[4];
+          H[3] += wt * sig[1];
+        }
+      }
+    }
+    MPI_Allreduce(hm.data(), hs.data(), nw * NA * 4, MPI_DOUBLE, MPI_SUM, world);
+    for (int w = 0; w < nw; w++) {
+      std::vector<double> hoop(NA, -1.0e300);
+      for (int j = 0; j < NA; j++) {
+        const double *H = hs.data() + 4 * (w * NA + j);
+        if (!(H[0] > 0.0)) continue;
+        const double sx = H[1] / H[0], sy = H[2] / H[0], sxy = H[3] / H[0];
+        const double c = cos(ang[w * NA + j]), sn = sin(ang[w * NA + j]);
+        // e_theta = (-sin, cos)
+        hoop[j] = sx * sn * sn + sy * c * c - 2.0 * sxy * sn * c;
+      }
+      int jm = 0;
+      for (int j = 1; j < NA; j++)
+        if (hoop[j] > hoop[jm]) jm = j;
+      double phi = ang[w * NA + jm];
+      if (jm > 0 && jm < NA - 1) {
+        // parabola through the three samples about the maximum
+        const double y0 = hoop[jm - 1], y1 = hoop[jm], y2 = hoop[jm + 1];
+        const double den = y0 - 2.0 * y1 + y2;
+        if (den < 0.0) phi += 0.5 * dth * (y0 - y2) / den;
+      }
+      nd[2 * want[w]] = cos(phi);
+      nd[2 * want[w] + 1] = sin(phi);
+    }
+  }
+
+  std::vector<CrackTip> born;
+  std::vector<int> moved;
+  for (int a = 0; a < nt; a++) {
+    CrackTip &tp = tips[a];
+    if (!tp.alive || Gt[a] < tip_Gc) continue;
+    const double G = Gt[a];
+    const double v = tip_cR * (1.0 - tip_Gc / G);
+    double P[2] = {tp.path.back()[0], tp.path.back()[1]};
+    if (tp.seg == 0.0) {
+      const double t0 = nd[2 * a], t1 = nd[2 * a + 1];
+      if (comm->me == 0 && !tp.growing)
+        utils::logmesg(lmp, "pair tlsph/damage: step {} t {:.6g}: tip {} at ({:.6g}, {:.6g}) "
+                            "grows, K_I {:.4g} K_II {:.4g} kink {:.2f} deg\n", update->ntimestep,
+                       update->atime + (update->ntimestep - update->atimestep) * dt, a, P[0], P[1],
+                       Kt[2 * a], Kt[2 * a + 1], tht[a] * 180.0 / M_PI);
+      tp.growing = 1;
+      if (tip_branch > 0.0 && G >= 2.0 * tip_Gc && tp.own >= seglen) {
+        for (int sgn = -1; sgn <= 1; sgn += 2) {
+          CrackTip b = tp;
+          const double cb = cos(sgn * tip_branch), sb = sin(sgn * tip_branch);
+          b.t[0] = cb * t0 - sb * t1;
+          b.t[1] = sb * t0 + cb * t1;
+          b.path.push_back({P[0], P[1]});
+          // its first segment keeps the branching direction (seg > 0)
+          b.seg = 1.0e-300;
+          b.own = 0.0;
+          born.push_back(b);
+        }
+        tp.alive = 0;
+        if (comm->me == 0)
+          utils::logmesg(lmp, "pair tlsph/damage: step {} tip {} at ({:.6g}, {:.6g}) branches "
+                              "(G {:.4g} = {:.3f} G_c)\n", update->ntimestep, a, P[0], P[1], G,
+                         G / tip_Gc);
+        continue;
+      }
+      tp.t[0] = t0;
+      tp.t[1] = t1;
+      tp.path.push_back({P[0], P[1]});
+      if (comm->me == 0 && getenv("TLSPH_TIP_TRACE"))
+        utils::logmesg(lmp, "tip-trace {} {} {:.6g} {:.6g} {:.4g} {:.4g} {:.4g} {:.3f} {:.2f}\n",
+                       update->ntimestep, a, P[0], P[1], Kt[2 * a], Kt[2 * a + 1], G / tip_Gc,
+                       v / tip_cR, atan2(t1, t0) * 180.0 / M_PI);
+    }
+    const double da = v * dt;
+    const double Pn[2] = {P[0] + da * tp.t[0], P[1] + da * tp.t[1]};
+    cut_path(P, Pn);
+    tp.path.back() = {Pn[0], Pn[1]};
+    tp.seg += da;
+    tp.own += da;
+    if (tp.seg >= seglen) tp.seg = 0.0;
+    moved.push_back(a);
+  }
+  // new branches take their first step next time; live tips that left the body stop
+  for (auto &b : born) tips.push_back(b);
+  if (!moved.empty()) {
+    std::vector<std::array<double, 2>> pts;
+    for (int a : moved) pts.push_back(tips[a].path.back());
+    std::vector<double> vol;
+    volume_near(lmp, x0c, atom->vfrac, nlocal, pts, h, vol);
+    for (size_t p = 0; p < moved.size(); p++)
+      if (vol[p] < 0.4 * M_PI * h * h * tip_depth) {
+        tips[moved[p]].alive = 0;
+        if (comm->me == 0)
+          utils::logmesg(lmp, "pair tlsph/damage: step {} tip {} stops at ({:.6g}, {:.6g}), "
+                              "outside the body\n", update->ntimestep, moved[p], pts[p][0], pts[p][1]);
+      }
+  }
 }

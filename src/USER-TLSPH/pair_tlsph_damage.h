@@ -81,6 +81,29 @@ class PairTLSPHDamage : public PairTLSPH {
   std::vector<double> stretch_up, stretch_down;    // per type pair: (1 +- s_c)^2
   std::vector<std::array<double, 9>> cracks;    // pre-cracks: 2D segments, 3D parallelograms
 
+  // 'criterion tip' (experimental; 3D: through-thickness cracks): crack-tip tracking. Each pre-crack
+  // end inside the body is a tip; its stress intensity factors come from
+  // the crack-face displacement jump behind it, it turns by the maximum
+  // tangential stress angle and advances at the speed of Freund's equation
+  // of motion, cutting the bonds its path crosses (no other bond breaks)
+  int tipmode;
+  int tip_hoop;         // direction: 0 kink angle from K_I, K_II, 1 largest hoop stress
+  double tip_seg;       // segment length in h (0: the sampling reach)
+  double tip_branch;    // half angle of a branching [rad] (0: tips never branch)
+  struct CrackTip {
+    std::vector<std::array<double, 2>> path;    // vertices, the last one is the tip
+    double t[2];                                // direction of the current segment
+    double seg;                                 // length grown on the current segment
+    double own;                                 // length grown since the tip was born
+    int alive, growing;
+  };
+  std::vector<CrackTip> tips;
+  int tips_ready;
+  double tip_Eprime, tip_Gc, tip_cR, tip_depth;
+  void init_tips();
+  void grow_tips();
+  void cut_path(const double *A, const double *B);
+
   int nmax_d;
   double *phi, *phis, *alphas;
   int comm_stage;          // forward: 0 packed rows (base), 1 damage phi; 2: reverse, marks

@@ -40,6 +40,9 @@ template <class DeviceType> void PairTLSPHDamageKokkos<DeviceType>::init_style()
     this->error->all(FLERR, "pair_style tlsph/damage/kk: 'correction rebuild' is not available "
                             "in the KOKKOS variant (it supports 'correction setup', the default): "
                             "use pair_style tlsph/damage");
+  if (this->tipmode)
+    this->error->all(FLERR, "pair_style tlsph/damage/kk: 'criterion tip' (experimental) is not "
+                            "available in the KOKKOS variant: use pair_style tlsph/damage");
   const int ntp = this->atom->ntypes + 1;
   upload(d_sc, this->sc.data(), ntp, "tlsph/damage/kk:sc");
   upload(d_up, this->stretch_up.data(), (size_t) ntp * ntp, "tlsph/damage/kk:up");
