@@ -103,11 +103,15 @@ void PairTLSPHDamage::settings(int narg, char **arg)
     } else if (key == "branch") {
       if (iarg + 1 >= narg)
         error->all(FLERR, "pair_style tlsph/damage: branch needs a value (half angle in degrees)");
-      const double a = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
-      if (!(a >= 0.0 && a < 90.0))
-        error->all(FLERR, "pair_style tlsph/damage: branch must be in [0, 90) degrees, got {}",
-                   arg[iarg + 1]);
-      tip_branch = a * M_PI / 180.0;
+      if (strcmp(arg[iarg + 1], "yoffe") == 0) {
+        tip_branch = -1.0;
+      } else {
+        const double a = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
+        if (!(a >= 0.0 && a < 90.0))
+          error->all(FLERR, "pair_style tlsph/damage: branch must be 'yoffe' or an angle in "
+                            "[0, 90) degrees, got {}", arg[iarg + 1]);
+        tip_branch = a * M_PI / 180.0;
+      }
       have_branch = true;
       iarg += 2;
     } else if (key == "correction") {
@@ -941,7 +945,18 @@ void PairTLSPHDamage::grow_tips()
   // radius 2h about the tip is largest (within +-80 deg of the current
   // direction; stresses interpolated over discs of radius h, which never
   // reach the faces behind the tip)
-  if (tip_hoop && !want.empty()) {
+  // 'branch yoffe': a tip with G >= 2 G_c branches where the hoop stress
+  // about it has two maxima, one each side of its direction (Yoffe's
+  // instability of a fast crack); the branches take those two directions
+  std::vector<double> bdir(2 * nt, 0.0);
+  std::vector<int> bsplit(nt, 0);
+  const int yoffe = (tip_branch < 0.0);
+  auto yoffe_candidate = [&](int a) {
+    return yoffe && Gt[a] >= 2.0 * tip_Gc && tips[a].own >= seglen;
+  };
+  bool need_hoop = false;
+  for (int a : want) need_hoop = need_hoop || tip_hoop || yoffe_candidate(a);
+  if (need_hoop) {
     constexpr int NA = 33;
     const double rs = 2.0 * h, rh = h, dth = 5.0 * M_PI / 180.0;
     const int nw = want.size();
@@ -987,18 +1002,112 @@ void PairTLSPHDamage::grow_tips()
         // e_theta = (-sin, cos)
         hoop[j] = sx * sn * sn + sy * c * c - 2.0 * sxy * sn * c;
       }
-      int jm = 0;
-      for (int j = 1; j < NA; j++)
-        if (hoop[j] > hoop[jm]) jm = j;
-      double phi = ang[w * NA + jm];
-      if (jm > 0 && jm < NA - 1) {
-        // parabola through the three samples about the maximum
-        const double y0 = hoop[jm - 1], y1 = hoop[jm], y2 = hoop[jm + 1];
-        const double den = y0 - 2.0 * y1 + y2;
-        if (den < 0.0) phi += 0.5 * dth * (y0 - y2) / den;
+      // the angle of the maximum at sample jm (parabola through its neighbours)
+      auto peak = [&](int jm) {
+        double phi = ang[w * NA + jm];
+        if (jm > 0 && jm < NA - 1) {
+          const double y0 = hoop[jm - 1], y1 = hoop[jm], y2 = hoop[jm + 1];
+          const double den = y0 - 2.0 * y1 + y2;
+          if (den < 0.0) phi += 0.5 * dth * (y0 - y2) / den;
+        }
+        return phi;
+      };
+      const int a = want[w];
+      if (tip_hoop) {
+        int jm = 0;
+        for (int j = 1; j < NA; j++)
+          if (hoop[j] > hoop[jm]) jm = j;
+        const double phi = peak(jm);
+        nd[2 * a] = cos(phi);
+        nd[2 * a + 1] = sin(phi);
       }
-      nd[2 * want[w]] = cos(phi);
-      nd[2 * want[w] + 1] = sin(phi);
+      if (yoffe_candidate(a)) {
+        // a smooth profile first (the samples carry the lattice's ripple):
+        // least squares fit of c0 + c1 cos + c2 cos 2 + s1 sin + s2 sin 2 of
+        // the angle to the direction, then its largest local maximum on
+        // each side of the direction (1 deg grid)
+        double M[25] = {0.0}, rhs[5] = {0.0};
+        const double phi0 = ang[w * NA + NA / 2];
+        auto basis = [](double u, double *b) {
+          b[0] = 1.0;
+          b[1] = cos(u);
+          b[2] = cos(2.0 * u);
+          b[3] = sin(u);
+          b[4] = sin(2.0 * u);
+        };
+        int nfit = 0;
+        for (int j = 0; j < NA; j++) {
+          if (hoop[j] < -1.0e299) continue;
+          double b[5];
+          basis(ang[w * NA + j] - phi0, b);
+          for (int r = 0; r < 5; r++) {
+            rhs[r] += b[r] * hoop[j];
+            for (int c = 0; c < 5; c++) M[5 * r + c] += b[r] * b[c];
+          }
+          nfit++;
+        }
+        double cf[5] = {0.0};
+        if (nfit >= 5) {
+          // Gaussian elimination with partial pivoting (5 x 5)
+          int piv[5] = {0, 1, 2, 3, 4};
+          bool sing = false;
+          for (int k = 0; k < 5 && !sing; k++) {
+            int pr = k;
+            for (int r = k + 1; r < 5; r++)
+              if (fabs(M[5 * r + k]) > fabs(M[5 * pr + k])) pr = r;
+            if (fabs(M[5 * pr + k]) < 1.0e-300) sing = true;
+            if (pr != k) {
+              for (int c = 0; c < 5; c++) std::swap(M[5 * k + c], M[5 * pr + c]);
+              std::swap(rhs[k], rhs[pr]);
+              std::swap(piv[k], piv[pr]);
+            }
+            for (int r = k + 1; r < 5 && !sing; r++) {
+              const double fct = M[5 * r + k] / M[5 * k + k];
+              for (int c = k; c < 5; c++) M[5 * r + c] -= fct * M[5 * k + c];
+              rhs[r] -= fct * rhs[k];
+            }
+          }
+          if (!sing)
+            for (int k = 4; k >= 0; k--) {
+              double v = rhs[k];
+              for (int c = k + 1; c < 5; c++) v -= M[5 * k + c] * cf[c];
+              cf[k] = v / M[5 * k + k];
+            }
+        }
+        auto smooth = [&](double u) {
+          double b[5];
+          basis(u, b);
+          return cf[0] * b[0] + cf[1] * b[1] + cf[2] * b[2] + cf[3] * b[3] + cf[4] * b[4];
+        };
+        // maxima beyond 65 deg are not taken: the fit is loosely held near
+        // its ends (80 deg), and the hoop stress maxima of a running crack
+        // stay within about 60-65 deg of its line up to the Rayleigh speed
+        // (Yoffe 1951)
+        const int nd1 = 65;
+        double bl = -1.0, br = -1.0, ul = 0.0, ur = 0.0;
+        for (int d = -nd1; d <= nd1; d++) {
+          const double u = d * M_PI / 180.0, e = M_PI / 180.0;
+          const double f0 = smooth(u);
+          if (!(f0 > smooth(u - e) && f0 >= smooth(u + e))) continue;
+          if (d < 0 && (bl < 0.0 || f0 > bl)) bl = f0, ul = u;
+          if (d > 0 && (br < 0.0 || f0 > br)) br = f0, ur = u;
+        }
+        const int jl = (bl > 0.0) ? 1 : -1, jr = (br > 0.0) ? 1 : -1;
+        if (getenv("TLSPH_TIP_TRACE") && comm->me == 0) {
+          std::string line = fmt::format("hoop-trace {} {} G/Gc {:.3f}:", update->ntimestep, a,
+                                         Gt[a] / tip_Gc);
+          for (int j = 0; j < NA; j += 2) line += fmt::format(" {:.3g}", hoop[j]);
+          line += fmt::format(" | fit {:.3g} {:.3g} {:.3g} {:.3g} {:.3g} | maxima {:.1f} {:.1f}", cf[0],
+                              cf[1], cf[2], cf[3], cf[4], bl > 0 ? ul * 180 / M_PI : 0.0,
+                              br > 0 ? ur * 180 / M_PI : 0.0);
+          utils::logmesg(lmp, line + "\n");
+        }
+        if (jl >= 0 && jr >= 0) {
+          bdir[2 * a] = phi0 + ul;
+          bdir[2 * a + 1] = phi0 + ur;
+          bsplit[a] = 1;
+        }
+      }
     }
   }
 
@@ -1018,12 +1127,18 @@ void PairTLSPHDamage::grow_tips()
                        update->atime + (update->ntimestep - update->atimestep) * dt, a, P[0], P[1],
                        Kt[2 * a], Kt[2 * a + 1], tht[a] * 180.0 / M_PI);
       tp.growing = 1;
-      if (tip_branch > 0.0 && G >= 2.0 * tip_Gc && tp.own >= seglen) {
+      if ((tip_branch > 0.0 && G >= 2.0 * tip_Gc && tp.own >= seglen) || bsplit[a]) {
         for (int sgn = -1; sgn <= 1; sgn += 2) {
           CrackTip b = tp;
-          const double cb = cos(sgn * tip_branch), sb = sin(sgn * tip_branch);
-          b.t[0] = cb * t0 - sb * t1;
-          b.t[1] = sb * t0 + cb * t1;
+          if (bsplit[a]) {
+            const double phi = bdir[2 * a + (sgn > 0 ? 1 : 0)];
+            b.t[0] = cos(phi);
+            b.t[1] = sin(phi);
+          } else {
+            const double cb = cos(sgn * tip_branch), sb = sin(sgn * tip_branch);
+            b.t[0] = cb * t0 - sb * t1;
+            b.t[1] = sb * t0 + cb * t1;
+          }
           b.path.push_back({P[0], P[1]});
           // its first segment keeps the branching direction (seg > 0)
           b.seg = 1.0e-300;
