@@ -53,8 +53,8 @@
 #              branches take those directions ('branch yoffe')
 #   tip-nobranch  the same without branching
 #   tip-thesis    tip with each deck's own (thesis) coefficients
-#   tip-hoop   tip with the direction of the largest hoop stress at 2h
-#              ('tipdir hoop', segments of h)
+#   tip-hoop   tip-nobranch with the direction of the largest hoop stress
+#              at 2h ('tipdir hoop', segments of h)
 # Runs are resumable: a finished case (its log ends with the wall time) is
 # kept unless FORCE=1. Wall time: the 0.5 mm Kalthoff case is 80,000
 # particles (about 15 min on a free core), the 0.333 mm plate 36,000 (3-5 min).
@@ -81,13 +81,14 @@ SCANS="scan-0.03-0.4-0.5-0.5-1.0 scan-0.03-0.4-0.5-0.5-0.0 scan-0.03-0.4-0.65-0.
 if [ "${settings[0]}" = all ]; then
   # shellcheck disable=SC2086
   {
-    NO_REPORT=1 bash "$0" thesis h2 common calibrated
+    NO_REPORT=1 bash "$0" thesis h2 common calibrated tip-yoffe tip tip-nobranch tip-thesis
+    KDX="1.67 1.0" BDX="0.5" NO_REPORT=1 bash "$0" tip-hoop
     KDX="1.67 1.0" NO_REPORT=1 bash "$0" family4 linear h2-calibrated
     KDX="" NO_REPORT=1 bash "$0" load2 load-1.25 load-1.5 load-1.75
     KDX="1.0" BDX="0.5" NO_REPORT=1 bash "$0" $SCANS
   }
   # shellcheck disable=SC2206
-  settings=(thesis h2 common calibrated family4 linear h2-calibrated load2 load-1.25 load-1.5 load-1.75 $SCANS)
+  settings=(thesis h2 common calibrated tip-yoffe tip tip-nobranch tip-thesis tip-hoop family4 linear h2-calibrated load2 load-1.25 load-1.5 load-1.75 $SCANS)
   KDX="" BDX=""
 fi
 
@@ -107,7 +108,7 @@ vars_of() {    # setting [kalthoff|branching]
     tip-yoffe) echo "-var crit tip -var branch yoffe -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-nobranch) echo "-var crit tip -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-thesis) echo "-var crit tip -var branch 15" ;;
-    tip-hoop) echo "-var crit tip -var tipdir hoop -var tipseg 1 -var branch 15 -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    tip-hoop) echo "-var crit tip -var tipdir hoop -var tipseg 1 -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     linear) echo "-var damping linear -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     load2) echo "-var sigma0 2.0e6" ;;
     load-*) echo "-var sigma0 ${1#load-}e6" ;;    # load-1.5: 1.5 MPa (diagnostic)

@@ -86,10 +86,11 @@ void PairTLSPHDamage::settings(int narg, char **arg)
       else if (strcmp(arg[iarg + 1], "tip") == 0) tipmode = 1;
       else
         error->all(FLERR, "pair_style tlsph/damage: criterion must be 'tension', 'absolute' or "
-                          "'tip' (experimental), got '{}'", arg[iarg + 1]);
+                          "'tip', got '{}'", arg[iarg + 1]);
       iarg += 2;
     } else if (key == "tipdir") {
       if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: tipdir needs a value");
+      have_branch = true;
       if (strcmp(arg[iarg + 1], "faces") == 0) tip_hoop = 0;
       else if (strcmp(arg[iarg + 1], "hoop") == 0) tip_hoop = 1;
       else
@@ -99,6 +100,10 @@ void PairTLSPHDamage::settings(int narg, char **arg)
     } else if (key == "tipseg") {
       if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: tipseg needs a value");
       tip_seg = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
+      if (!(tip_seg >= 0.0))
+        error->all(FLERR, "pair_style tlsph/damage: tipseg must be >= 0 (a length in h; 0: the "
+                          "sampling reach), got {}", arg[iarg + 1]);
+      have_branch = true;
       iarg += 2;
     } else if (key == "branch") {
       if (iarg + 1 >= narg)
@@ -161,7 +166,8 @@ void PairTLSPHDamage::settings(int narg, char **arg)
     }
   }
   if (have_branch && !tipmode)
-    error->all(FLERR, "pair_style tlsph/damage: branch is a setting of 'criterion tip'");
+    error->all(FLERR, "pair_style tlsph/damage: branch, tipdir and tipseg are settings of "
+                      "'criterion tip'");
   PairTLSPH::settings((int) base.size(), base.data());
   // the thesis's fracture model uses the linear correction: keep it the default
   if (!have_gradient) order = 1;
@@ -235,14 +241,21 @@ void PairTLSPHDamage::read_material_extra(FILE *fp, int type)
 
 void PairTLSPHDamage::write_restart_settings(FILE *fp)
 {
-  if (tipmode)
-    error->one(FLERR, "pair tlsph/damage: 'criterion tip' (experimental) cannot be written to a "
-                      "restart file");
   PairTLSPH::write_restart_settings(fp);
   double v[6] = {alpha_d, (double) absolute, (double) rebuild, (double) cracks.size(), family,
                  (double) damping_linear};
   fwrite(v, sizeof(double), 6, fp);
   for (const auto &c : cracks) fwrite(c.data(), sizeof(double), 9, fp);
+  // 'criterion tip': the settings, then every tip with its path (identical on all ranks)
+  double w[6] = {(double) tipmode, (double) tip_hoop, tip_seg, tip_branch, (double) tips_ready,
+                 (double) tips.size()};
+  fwrite(w, sizeof(double), 6, fp);
+  for (const auto &tp : tips) {
+    std::vector<double> r = {(double) tp.path.size(), tp.t[0], tp.t[1], tp.seg, tp.own,
+                             (double) tp.alive, (double) tp.growing};
+    for (const auto &p : tp.path) r.insert(r.end(), {p[0], p[1]});
+    fwrite(r.data(), sizeof(double), r.size(), fp);
+  }
 }
 
 void PairTLSPHDamage::read_restart_settings(FILE *fp)
@@ -268,6 +281,38 @@ void PairTLSPHDamage::read_restart_settings(FILE *fp)
   for (auto &c : cracks) {
     if (comm->me == 0) utils::sfread(FLERR, c.data(), sizeof(double), 9, fp, nullptr, error);
     MPI_Bcast(c.data(), 9, MPI_DOUBLE, 0, world);
+  }
+  double w[6];
+  if (comm->me == 0) utils::sfread(FLERR, w, sizeof(double), 6, fp, nullptr, error);
+  MPI_Bcast(w, 6, MPI_DOUBLE, 0, world);
+  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] == 0.0 || w[1] == 1.0) && w[2] >= 0.0 &&
+        w[3] < 2.0 && (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 && w[5] == std::floor(w[5]) &&
+        w[5] < 1.0e7))
+    error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
+                      "version's layout (written by another version of the package?)");
+  tipmode = static_cast<int>(w[0]);
+  tip_hoop = static_cast<int>(w[1]);
+  tip_seg = w[2];
+  tip_branch = w[3];
+  tips_ready = static_cast<int>(w[4]);
+  tips.assign(static_cast<size_t>(w[5]), CrackTip{});
+  for (auto &tp : tips) {
+    double r[7];
+    if (comm->me == 0) utils::sfread(FLERR, r, sizeof(double), 7, fp, nullptr, error);
+    MPI_Bcast(r, 7, MPI_DOUBLE, 0, world);
+    const int np = static_cast<int>(r[0]);
+    tp.t[0] = r[1];
+    tp.t[1] = r[2];
+    tp.seg = r[3];
+    tp.own = r[4];
+    tp.alive = static_cast<int>(r[5]);
+    tp.growing = static_cast<int>(r[6]);
+    std::vector<double> q(2 * (size_t) np);
+    if (comm->me == 0 && np > 0)
+      utils::sfread(FLERR, q.data(), sizeof(double), q.size(), fp, nullptr, error);
+    if (np > 0) MPI_Bcast(q.data(), (int) q.size(), MPI_DOUBLE, 0, world);
+    tp.path.resize(np);
+    for (int k = 0; k < np; k++) tp.path[k] = {q[2 * k], q[2 * k + 1]};
   }
 }
 
@@ -325,7 +370,7 @@ void PairTLSPHDamage::init_style()
       error->all(FLERR, "pair tlsph/damage: 'criterion tip' needs an isotropic type 1 with Gc");
     for (int t = 2; t <= atom->ntypes; t++)
       if (mat[t].rho > 0.0 && (mat[t].E != m.E || mat[t].nu != m.nu || mat[t].rho != m.rho))
-        error->all(FLERR, "pair tlsph/damage: 'criterion tip' (experimental) needs one material");
+        error->all(FLERR, "pair tlsph/damage: 'criterion tip' needs one material (all types alike)");
     // E' (plane stress E, plane strain E / (1 - nu^2)), G_c, and the Rayleigh
     // speed (Viktorov's approximation c_R = c_s (0.862 + 1.14 nu) / (1 + nu))
     tip_Eprime = plane_stress ? m.E : m.E / (1.0 - m.nu * m.nu);
@@ -701,7 +746,7 @@ double PairTLSPHDamage::memory_usage()
 }
 
 /* ----------------------------------------------------------------------
-   'criterion tip' (experimental, 2D): crack-tip tracking
+   'criterion tip': crack-tip tracking (2D, and through-thickness cracks in 3D)
 ------------------------------------------------------------------------- */
 
 // the volume of the particles within radius R of each point (all ranks)
@@ -1171,6 +1216,14 @@ void PairTLSPHDamage::grow_tips()
   }
   // new branches take their first step next time; live tips that left the body stop
   for (auto &b : born) tips.push_back(b);
+  if (!born.empty()) {
+    int nlive = 0;
+    for (const auto &tp : tips) nlive += tp.alive;
+    if (nlive > 1000)
+      error->all(FLERR, "pair tlsph/damage: step {}: {} live crack tips (branching runs away; "
+                        "with 'branch A' every tip with G >= 2 G_c splits): stopped", update->ntimestep,
+                 nlive);
+  }
   if (!moved.empty()) {
     std::vector<std::array<double, 2>> pts;
     for (int a : moved) pts.push_back(tips[a].path.back());

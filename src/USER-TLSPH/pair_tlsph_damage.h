@@ -55,6 +55,15 @@ class PairTLSPHDamage : public PairTLSPH {
   // W(|X_ij|) of bond m of local particle i
   double kernel_value(int i, int m) const;
   double critical_stretch_of(int type) const { return sc[type]; }
+  // 'criterion tip': the crack tips (path vertices, the last one the tip), all ranks
+  struct CrackTip {
+    std::vector<std::array<double, 2>> path;    // vertices, the last one is the tip
+    double t[2];                                // direction of the current segment
+    double seg;                                 // length grown on the current segment
+    double own;                                 // length grown since the tip was born
+    int alive, growing;
+  };
+  const std::vector<CrackTip> &crack_tips() const { return tips; }
 
  protected:
   bool material_key(int, const std::string &, double, const std::string &) override;
@@ -81,7 +90,7 @@ class PairTLSPHDamage : public PairTLSPH {
   std::vector<double> stretch_up, stretch_down;    // per type pair: (1 +- s_c)^2
   std::vector<std::array<double, 9>> cracks;    // pre-cracks: 2D segments, 3D parallelograms
 
-  // 'criterion tip' (experimental; 3D: through-thickness cracks): crack-tip tracking. Each pre-crack
+  // 'criterion tip' (3D: through-thickness cracks): crack-tip tracking. Each pre-crack
   // end inside the body is a tip; its stress intensity factors come from
   // the crack-face displacement jump behind it, it turns by the maximum
   // tangential stress angle and advances at the speed of Freund's equation
@@ -90,13 +99,6 @@ class PairTLSPHDamage : public PairTLSPH {
   int tip_hoop;         // direction: 0 kink angle from K_I, K_II, 1 largest hoop stress
   double tip_seg;       // segment length in h (0: the sampling reach)
   double tip_branch;    // half angle of a branching [rad] (0: tips never branch)
-  struct CrackTip {
-    std::vector<std::array<double, 2>> path;    // vertices, the last one is the tip
-    double t[2];                                // direction of the current segment
-    double seg;                                 // length grown on the current segment
-    double own;                                 // length grown since the tip was born
-    int alive, growing;
-  };
   std::vector<CrackTip> tips;
   int tips_ready;
   double tip_Eprime, tip_Gc, tip_cR, tip_depth;

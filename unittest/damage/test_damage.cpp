@@ -36,6 +36,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -1285,6 +1286,170 @@ TEST(VelocityFilter, matches_eq_2_36)
   EXPECT_GT(nfiltered_total, 20);
   EXPECT_EQ(untouched_changed, 0);
   EXPECT_LE(worst, 1e-12 * vscale);
+  delete lmp;
+}
+
+
+/* ----------------------------------------------------------------------
+   'criterion tip' (crack-tip tracking): a pre-cracked 2D glass plate whose
+   top and bottom rows are pulled apart (mode I), stepped one step at a time.
+   Checked after every step: no bond heals, both ends agree, a tip path only
+   grows (its vertices are kept, the last one, the tip, moves forward). At
+   the end: every bond broken during the run crosses a segment the tips
+   grew (a bond across the crack plane breaks), no intact bond crosses one
+   (a bond along the crack, or ahead of the tip, does not), and the crack
+   grew. Then the rows are pushed back together (compression): still no
+   bond heals.
+------------------------------------------------------------------------- */
+
+namespace {
+
+// does segment A-B cross segment P-R? inclusive: within eps of touching
+// counts; strict: both must lie clearly across
+bool seg_cross(const double *A, const double *B, const double *P, const double *R, bool inclusive)
+{
+  const double d1x = B[0] - A[0], d1y = B[1] - A[1];
+  const double d2x = R[0] - P[0], d2y = R[1] - P[1];
+  const double den = d1x * d2y - d1y * d2x;
+  if (den == 0.0) return false;
+  const double ex = P[0] - A[0], ey = P[1] - A[1];
+  const double t = (ex * d2y - ey * d2x) / den;    // along A-B
+  const double u = (ex * d1y - ey * d1x) / den;    // along P-R
+  const double e = 1.0e-9;
+  if (inclusive) return t >= -e && t <= 1.0 + e && u >= -e && u <= 1.0 + e;
+  return t > e && t < 1.0 - e && u > e && u < 1.0 - e;
+}
+
+using Path = std::vector<std::array<double, 2>>;
+
+std::vector<Path> tip_paths(LAMMPS *lmp)
+{
+  std::vector<Path> out;
+  for (const auto &tp : damage_pair(lmp)->crack_tips()) out.push_back(tp.path);
+  return out;
+}
+
+}    // namespace
+
+TEST(TipCriterion, cuts_the_bonds_across_its_path_only)
+{
+  LAMMPS *lmp = open_lammps();
+  run_script(lmp, R"(units si
+dimension 2
+boundary s s p
+atom_style peri
+atom_modify map array
+lattice sq 0.001 origin 0.5 0.5 0.0
+region box block 0 40 0 20 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+set type 1 volume 1e-6
+set type 1 mass 2.45e-3
+pair_style tlsph/damage h 0.00133 alpha 0.03 alpha_d 0.4 gamma 0 criterion tip precrack -0.001 0.010 0.015 0.010
+pair_coeff 1 1 E 32e9 nu 0.2 rho 2450 Gc 3
+region topr block INF INF 19 INF INF INF
+region botr block INF INF INF 1 INF INF
+group top region topr
+group bot region botr
+group mid subtract all top bot
+fix pt top move linear 0 0.5 NULL units box
+fix pb bot move linear 0 -0.5 NULL units box
+fix nve mid nve
+timestep 5e-8
+compute dmg all tlsph/damage/atom
+run 0
+)");
+  Atom *atom = lmp->atom;
+  PairTLSPHDamage *pair = damage_pair(lmp);
+  ASSERT_NE(pair, nullptr);
+  ASSERT_EQ(pair->crack_tips().size(), 1u) << "one pre-crack end lies inside the plate";
+  BondView v0 = bond_view(lmp);
+  std::map<Key, int> prev = v0.state;
+  std::vector<Path> prevp = tip_paths(lmp);
+  int healed = 0, shrunk = 0;
+  auto watch = [&]() {
+    const BondView v = bond_view(lmp);
+    EXPECT_EQ(v.asymmetric, 0);
+    for (const auto &kv : v.state)
+      if (prev.at(kv.first) != INTACT && kv.second == INTACT) healed++;
+    const std::vector<Path> p = tip_paths(lmp);
+    // tips are only added; a path keeps its vertices but the last, which
+    // moves forward, or gains vertices (the old tip stays one)
+    if (p.size() < prevp.size()) shrunk++;
+    for (size_t a = 0; a < prevp.size() && a < p.size(); a++) {
+      if (p[a].size() < prevp[a].size()) shrunk++;
+      for (size_t k = 0; k + 1 < prevp[a].size(); k++)
+        if (p[a][k] != prevp[a][k]) shrunk++;
+    }
+    prev = v.state;
+    prevp = p;
+  };
+  for (int n = 0; n < 500; n++) {
+    step(lmp);
+    watch();
+  }
+  EXPECT_EQ(healed, 0) << "a broken bond healed";
+  EXPECT_EQ(shrunk, 0) << "a crack path lost a vertex or moved back";
+
+  // the grown segments (the first segment of each path is the pre-crack)
+  std::vector<std::array<double, 4>> grown;
+  double length = 0.0;
+  for (const auto &tp : pair->crack_tips())
+    for (size_t k = 1; k + 1 < tp.path.size(); k++) {
+      grown.push_back({tp.path[k][0], tp.path[k][1], tp.path[k + 1][0], tp.path[k + 1][1]});
+      length += std::hypot(tp.path[k + 1][0] - tp.path[k][0], tp.path[k + 1][1] - tp.path[k][1]);
+    }
+  const BondView v = bond_view(lmp);
+  int nbroken = 0, wrong_broken = 0, wrong_intact = 0, along = 0;
+  for (const auto &kv : v.state) {
+    const double *A = atom->x0[atom->map(kv.first.first)], *B = atom->x0[atom->map(kv.first.second)];
+    bool incl = false, strict = false, near_parallel = false;
+    for (const auto &g : grown) {
+      incl = incl || seg_cross(A, B, &g[0], &g[2], true);
+      strict = strict || seg_cross(A, B, &g[0], &g[2], false);
+      // a bond lying along the segment, next to it (both ends within 1 mm)
+      const double tx = g[2] - g[0], ty = g[3] - g[1], L = std::hypot(tx, ty);
+      if (L <= 0.0) continue;
+      const double bx = B[0] - A[0], by = B[1] - A[1], bl = std::hypot(bx, by);
+      const double cosang = std::fabs(tx * bx + ty * by) / (L * bl);
+      auto dist = [&](const double *X) {
+        const double s = std::max(0.0, std::min(L, ((X[0] - g[0]) * tx + (X[1] - g[1]) * ty) / L));
+        return std::hypot(X[0] - g[0] - s * tx / L, X[1] - g[1] - s * ty / L);
+      };
+      if (cosang > 0.95 && dist(A) < 0.001 && dist(B) < 0.001) near_parallel = true;
+    }
+    if (kv.second == BROKEN) {
+      nbroken++;
+      if (!incl && wrong_broken++ < 10)
+        ADD_FAILURE() << "bond " << kv.first.first << "-" << kv.first.second
+                      << " broke but crosses no grown segment";
+    } else if (kv.second == INTACT) {
+      if (strict && wrong_intact++ < 10)
+        ADD_FAILURE() << "bond " << kv.first.first << "-" << kv.first.second
+                      << " crosses a grown segment but is intact";
+      if (near_parallel && !strict) along++;
+    }
+  }
+  printf("criterion tip: crack grew %.2f mm in %zu segment(s), %d bonds broke, %d intact bonds "
+         "run along the crack next to it\n", length * 1e3, grown.size(), nbroken, along);
+  EXPECT_GT(length, 0.004) << "the crack must grow for the test to mean something";
+  EXPECT_GT(nbroken, 10);
+  EXPECT_GT(along, 10) << "bonds along the crack";
+  EXPECT_EQ(wrong_broken, 0);
+  EXPECT_EQ(wrong_intact, 0);
+
+  // push back: compression closes the faces, nothing heals
+  run_script(lmp, R"(unfix pt
+unfix pb
+fix pt top move linear 0 -0.5 NULL units box
+fix pb bot move linear 0 0.5 NULL units box
+)");
+  for (int n = 0; n < 200; n++) {
+    step(lmp);
+    watch();
+  }
+  EXPECT_EQ(healed, 0) << "a broken bond healed under compression";
+  EXPECT_EQ(shrunk, 0);
   delete lmp;
 }
 

@@ -36,11 +36,22 @@ def main():
     def more(ap):
         ap.add_argument("--tools", required=True, help="tools/ (crack_measure.py)")
         ap.add_argument("--tend", type=float, default=60e-6)
+        ap.add_argument("--dx", default="0.0005", help="particle spacing [m]")
+        ap.add_argument("--hdx", default="2.0", help="h / dx")
+        ap.add_argument("--window", type=float, nargs=2, default=[35.0, 50.0],
+                        help="allowed branching time [us]")
+        ap.add_argument("--vars", nargs="*", default=[],
+                        help="more deck variables, as NAME VALUE pairs (-var NAME VALUE)")
     a = example_args("crack-branching", more)
     prefix = os.path.abspath(os.path.join(a.workdir, "branching"))
     cmd = [os.path.abspath(a.lmp), "-in", "in.crack-branching", "-log", prefix + ".log",
-           "-screen", "none", "-var", "out", prefix, "-var", "dx", "0.0005", "-var", "hdx", "2.0",
+           "-screen", "none", "-var", "out", prefix, "-var", "dx", a.dx, "-var", "hdx", a.hdx,
            "-var", "tend", repr(a.tend), "-var", "timg", "0"]
+    if len(a.vars) % 2:
+        print("FAILED: --vars needs NAME VALUE pairs")
+        return 1
+    for k in range(0, len(a.vars), 2):
+        cmd += ["-var", a.vars[k], a.vars[k + 1]]
     if not run_lammps(cmd, cwd=a.example):
         return 1
     sys.path.insert(0, a.tools)
@@ -65,7 +76,8 @@ def main():
           f"cracked off the crack {other}, energy excess max {excess:+.4f}")
     checks = [
         ("two persistent branches at the end, never more", nfin == 2 and nmax == 2),
-        ("branching between 35 and 50 us", br is not None and 35e-6 <= br <= 50e-6),
+        (f"branching between {a.window[0]:g} and {a.window[1]:g} us", br is not None
+         and a.window[0] * 1e-6 <= br <= a.window[1] * 1e-6),
         ("no cracked particle off the crack or along the loaded rows",
          other == 0 and rows_cracked == 0),
         ("peak speed below the Rayleigh speed", c["speed_max"] is not None

@@ -41,7 +41,7 @@ template <class DeviceType> void PairTLSPHDamageKokkos<DeviceType>::init_style()
                             "in the KOKKOS variant (it supports 'correction setup', the default): "
                             "use pair_style tlsph/damage");
   if (this->tipmode)
-    this->error->all(FLERR, "pair_style tlsph/damage/kk: 'criterion tip' (experimental) is not "
+    this->error->all(FLERR, "pair_style tlsph/damage/kk: 'criterion tip' is not "
                             "available in the KOKKOS variant: use pair_style tlsph/damage");
   const int ntp = this->atom->ntypes + 1;
   upload(d_sc, this->sc.data(), ntp, "tlsph/damage/kk:sc");
