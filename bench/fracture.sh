@@ -156,5 +156,5 @@ for s in "${settings[@]}"; do
   for mm in $BDX; do run_deck crack-branching in.crack-branching "$s" "$mm" -var tend 90e-6 $vb; done
 done
 [ -n "${NO_REPORT:-}" ] && exit 0
-"$PY" "$HERE/fracture_report.py" --out "$OUT" --doc "$ROOT/doc/fracture-convergence.md" \
+"$PY" "$HERE/fracture_report.py" --out "$OUT" --doc "$ROOT/doc/fracture-convergence.md" --kept tip-yoffe \
   --notes "$HERE/fracture-notes.md" "${settings[@]}"
