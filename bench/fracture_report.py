@@ -164,43 +164,64 @@ def branching_verdict(rows):
     return "; ".join(res), list(dict.fromkeys(bad))
 
 
-def plot(data, png):
-    fig, ax = plt.subplots(2, 2, figsize=(11, 8))
-    a_ang, a_ini, a_br, a_sp = ax[0][0], ax[0][1], ax[1][0], ax[1][1]
-    a_ang.axhspan(63, 72, color="0.85", label="issue band 63-72 deg")
-    a_ang.axhline(70, color="k", ls="--", lw=1, label="experiment ~70 deg")
-    a_br.axhspan(25, 40, color="0.85", label="phase-field / XFEM 25-40 us")
-    a_sp.axhline(RAYLEIGH_KW, color="C3", ls=":", label="Rayleigh, steel 2803 m/s")
-    a_sp.axhline(RAYLEIGH_GLASS, color="C4", ls=":", label="Rayleigh, glass 2125 m/s")
-    for i, (setting, (krows, brows)) in enumerate(data.items()):
-        col = f"C{i}"
-        if krows:
-            dx = [r[0] for r in krows]
-            for side, mk in (("upper", "o"), ("lower", "v")):
-                a_ang.plot(dx, [r[1]["cracks"].get(side, {}).get("angle_deg") or float("nan")
-                                for r in krows], mk + "-", color=col, label=f"{setting}, {side}")
-            a_ini.plot(dx, [(r[1]["cracks"]["upper"].get("initiation_time") or float("nan")) * 1e6
-                            for r in krows], "o-", color=col, label=f"{setting}, Kalthoff")
-            a_sp.plot(dx, [r[1]["cracks"]["upper"].get("speed_max") or float("nan") for r in krows],
-                      "o-", color=col, label=f"{setting}, Kalthoff")
-        if brows:
-            dx = [r[0] for r in brows]
-            cs = [list(r[1]["cracks"].values())[0] for r in brows]
-            a_br.plot(dx, [(c.get("branching_time") or float("nan")) * 1e6 for c in cs], "s-",
-                      color=col, label=f"{setting}")
-            a_ini.plot(dx, [(c.get("initiation_time") or float("nan")) * 1e6 for c in cs], "s--",
-                       color=col, label=f"{setting}, branching plate")
-            a_sp.plot(dx, [c.get("speed_max") or float("nan") for c in cs], "s--", color=col,
-                      label=f"{setting}, branching plate")
-    for a, t, y in ((a_ang, "Kalthoff-Winkler 2D: crack angle to the impact", "angle [deg]"),
-                    (a_ini, "crack initiation", "time [us]"),
-                    (a_br, "crack branching plate: branching time (none: not drawn)", "time [us]"),
-                    (a_sp, "peak tip speed", "speed [m/s]")):
-        a.set_title(t, fontsize=10)
+def _series(axes, setting, krows, brows, col):
+    """draw one setting's runs into axes (dict: ang, ini, br, sp and, optionally, edge)"""
+    if krows:
+        dx = [r[0] for r in krows]
+        for side, mk in (("upper", "o"), ("lower", "v")):
+            axes["ang"].plot(dx, [r[1]["cracks"].get(side, {}).get("angle_deg") or float("nan")
+                                  for r in krows], mk + "-", color=col, label=f"{setting}, {side}")
+        up = [r[1]["cracks"]["upper"] for r in krows]
+        axes["ini"].plot(dx, [(c.get("initiation_time") or float("nan")) * 1e6 for c in up], "o-",
+                         color=col, label=f"{setting}, Kalthoff")
+        axes["sp"].plot(dx, [c.get("speed_max") or float("nan") for c in up], "o-", color=col,
+                        label=f"{setting}, Kalthoff")
+        if "edge" in axes:
+            axes["edge"].plot(dx, [(first_edge(c)[1] or float("nan")) * 1e6 for c in up], "o-",
+                              color=col, label=f"{setting}, Kalthoff: a plate edge")
+    if brows:
+        dx = [r[0] for r in brows]
+        cs = [list(r[1]["cracks"].values())[0] for r in brows]
+        axes["br"].plot(dx, [(c.get("branching_time") or float("nan")) * 1e6 for c in cs], "s-",
+                        color=col, label=setting)
+        axes["ini"].plot(dx, [(c.get("initiation_time") or float("nan")) * 1e6 for c in cs], "s--",
+                         color=col, label=f"{setting}, branching plate")
+        axes["sp"].plot(dx, [c.get("speed_max") or float("nan") for c in cs], "s--", color=col,
+                        label=f"{setting}, branching plate")
+        if "edge" in axes:
+            axes["edge"].plot(dx, [((c.get("edge_reached_time") or {}).get("xmax") or float("nan"))
+                                   * 1e6 for c in cs], "s--", color=col,
+                              label=f"{setting}, plate: right edge")
+
+
+def _frame(axes):
+    """the literature bands, titles, labels and the dx range of every panel"""
+    axes["ang"].axhspan(63, 72, color="0.85", label="issue band 63-72 deg")
+    axes["ang"].axhline(70, color="k", ls="--", lw=1, label="experiment ~70 deg")
+    axes["br"].axhspan(25, 40, color="0.85", label="phase-field / XFEM 25-40 us")
+    axes["br"].axhline(45, color="0.5", ls=":", lw=1, label="issue's limit 45 us")
+    axes["sp"].axhline(RAYLEIGH_KW, color="C3", ls=":", label="Rayleigh, steel 2803 m/s")
+    axes["sp"].axhline(RAYLEIGH_GLASS, color="C4", ls=":", label="Rayleigh, glass 2125 m/s")
+    titles = {"ang": ("Kalthoff-Winkler 2D: crack angle to the impact", "angle [deg]"),
+              "ini": ("crack initiation", "time [us]"),
+              "br": ("crack branching plate: branching time (none: not drawn)", "time [us]"),
+              "sp": ("peak tip speed", "speed [m/s]"),
+              "edge": ("time the crack reaches an edge", "time [us]")}
+    for k, a in axes.items():
+        a.set_title(titles[k][0], fontsize=10)
         a.set_xlabel("dx [mm]")
-        a.set_ylabel(y)
+        a.set_ylabel(titles[k][1])
         a.set_xlim(1.8, 0.25)    # the studied range, finest on the right
         a.grid(alpha=0.3)
+
+
+def plot(data, png):
+    fig, ax = plt.subplots(2, 2, figsize=(11, 8))
+    axes = {"ang": ax[0][0], "ini": ax[0][1], "br": ax[1][0], "sp": ax[1][1]}
+    _frame(axes)
+    for i, (setting, (krows, brows)) in enumerate(data.items()):
+        _series(axes, setting, krows, brows, f"C{i}")
+    for a in axes.values():
         a.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
@@ -210,54 +231,13 @@ def plot_kept(data, png, kept):
     """the kept setting beside the thesis's: angle, initiation, branching time,
     peak tip speed and edge times against dx, with the literature bands"""
     fig, ax = plt.subplots(2, 3, figsize=(14, 7.5))
-    a_ang, a_ini, a_br = ax[0]
-    a_sp, a_edge, a_off = ax[1]
-    a_off.axis("off")
-    a_ang.axhspan(63, 72, color="0.85", label="issue band 63-72 deg")
-    a_ang.axhline(70, color="k", ls="--", lw=1, label="experiment ~70 deg")
-    a_br.axhspan(25, 40, color="0.85", label="phase-field / XFEM 25-40 us")
-    a_br.axhline(45, color="0.5", ls=":", lw=1, label="issue's limit 45 us")
-    a_sp.axhline(RAYLEIGH_KW, color="C3", ls=":", label="Rayleigh, steel 2803 m/s")
-    a_sp.axhline(RAYLEIGH_GLASS, color="C4", ls=":", label="Rayleigh, glass 2125 m/s")
+    axes = {"ang": ax[0][0], "ini": ax[0][1], "br": ax[0][2], "sp": ax[1][0], "edge": ax[1][1]}
+    ax[1][2].axis("off")
+    _frame(axes)
     for i, setting in enumerate(["thesis", kept]):
-        if setting not in data:
-            continue
-        krows, brows = data[setting]
-        col = f"C{i}"
-        if krows:
-            dx = [r[0] for r in krows]
-            for side, mk in (("upper", "o"), ("lower", "v")):
-                a_ang.plot(dx, [r[1]["cracks"].get(side, {}).get("angle_deg") or float("nan")
-                                for r in krows], mk + "-", color=col, label=f"{setting}, {side}")
-            up = [r[1]["cracks"]["upper"] for r in krows]
-            a_ini.plot(dx, [(c.get("initiation_time") or float("nan")) * 1e6 for c in up], "o-",
-                       color=col, label=f"{setting}, Kalthoff")
-            a_sp.plot(dx, [c.get("speed_max") or float("nan") for c in up], "o-", color=col,
-                      label=f"{setting}, Kalthoff")
-            a_edge.plot(dx, [(first_edge(c)[1] or float("nan")) * 1e6 for c in up], "o-",
-                        color=col, label=f"{setting}, Kalthoff: a plate edge")
-        if brows:
-            dx = [r[0] for r in brows]
-            cs = [list(r[1]["cracks"].values())[0] for r in brows]
-            a_br.plot(dx, [(c.get("branching_time") or float("nan")) * 1e6 for c in cs], "s-",
-                      color=col, label=setting)
-            a_ini.plot(dx, [(c.get("initiation_time") or float("nan")) * 1e6 for c in cs], "s--",
-                       color=col, label=f"{setting}, branching plate")
-            a_sp.plot(dx, [c.get("speed_max") or float("nan") for c in cs], "s--", color=col,
-                      label=f"{setting}, branching plate")
-            a_edge.plot(dx, [((c.get("edge_reached_time") or {}).get("xmax") or float("nan")) * 1e6
-                             for c in cs], "s--", color=col,
-                        label=f"{setting}, plate: right edge")
-    for a, t, y in ((a_ang, "Kalthoff-Winkler 2D: crack angle", "angle [deg]"),
-                    (a_ini, "crack initiation", "time [us]"),
-                    (a_br, "branching plate: branching time (none: not drawn)", "time [us]"),
-                    (a_sp, "peak tip speed", "speed [m/s]"),
-                    (a_edge, "time the crack reaches an edge", "time [us]")):
-        a.set_title(t, fontsize=10)
-        a.set_xlabel("dx [mm]")
-        a.set_ylabel(y)
-        a.set_xlim(1.8, 0.25)
-        a.grid(alpha=0.3)
+        if setting in data:
+            _series(axes, setting, *data[setting], f"C{i}")
+    for a in axes.values():
         a.legend(fontsize=7)
     fig.suptitle(f"kept setting '{kept}' and the thesis's setting 'thesis'", fontsize=11)
     fig.tight_layout()
