@@ -1091,34 +1091,10 @@ void PairTLSPHDamage::grow_tips()
           }
           nfit++;
         }
-        double cf[5] = {0.0};
-        if (nfit >= 5) {
-          // Gaussian elimination with partial pivoting (5 x 5)
-          int piv[5] = {0, 1, 2, 3, 4};
-          bool sing = false;
-          for (int k = 0; k < 5 && !sing; k++) {
-            int pr = k;
-            for (int r = k + 1; r < 5; r++)
-              if (fabs(M[5 * r + k]) > fabs(M[5 * pr + k])) pr = r;
-            if (fabs(M[5 * pr + k]) < 1.0e-300) sing = true;
-            if (pr != k) {
-              for (int c = 0; c < 5; c++) std::swap(M[5 * k + c], M[5 * pr + c]);
-              std::swap(rhs[k], rhs[pr]);
-              std::swap(piv[k], piv[pr]);
-            }
-            for (int r = k + 1; r < 5 && !sing; r++) {
-              const double fct = M[5 * r + k] / M[5 * k + k];
-              for (int c = k; c < 5; c++) M[5 * r + c] -= fct * M[5 * k + c];
-              rhs[r] -= fct * rhs[k];
-            }
-          }
-          if (!sing)
-            for (int k = 4; k >= 0; k--) {
-              double v = rhs[k];
-              for (int c = k + 1; c < 5; c++) v -= M[5 * k + c] * cf[c];
-              cf[k] = v / M[5 * k + k];
-            }
-        }
+        double cf[5] = {0.0}, Minv[25];
+        if (nfit >= 5 && invert_small(5, M, Minv))
+          for (int r = 0; r < 5; r++)
+            for (int c = 0; c < 5; c++) cf[r] += Minv[5 * r + c] * rhs[c];
         auto smooth = [&](double u) {
           double b[5];
           basis(u, b);

@@ -27,7 +27,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import example_args, run_lammps, verdict  # noqa: E402
+from checks import deck_vars, example_args, run_lammps, verdict  # noqa: E402
 
 RAYLEIGH = 2125.0
 
@@ -47,11 +47,10 @@ def main():
     cmd = [os.path.abspath(a.lmp), "-in", "in.crack-branching", "-log", prefix + ".log",
            "-screen", "none", "-var", "out", prefix, "-var", "dx", a.dx, "-var", "hdx", a.hdx,
            "-var", "tend", repr(a.tend), "-var", "timg", "0"]
-    if len(a.vars) % 2:
-        print("FAILED: --vars needs NAME VALUE pairs")
+    extra = deck_vars(a.vars)
+    if extra is None:
         return 1
-    for k in range(0, len(a.vars), 2):
-        cmd += ["-var", a.vars[k], a.vars[k + 1]]
+    cmd += extra
     if not run_lammps(cmd, cwd=a.example):
         return 1
     sys.path.insert(0, a.tools)

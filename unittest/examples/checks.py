@@ -20,6 +20,14 @@ def example_args(example, more=None):
     return a
 
 
+def deck_vars(pairs):
+    """NAME VALUE pairs (a --vars list) as LAMMPS '-var NAME VALUE' words; None if odd"""
+    if len(pairs) % 2:
+        print("FAILED: --vars needs NAME VALUE pairs")
+        return None
+    return [w for k in range(0, len(pairs), 2) for w in ("-var", pairs[k], pairs[k + 1])]
+
+
 def verdict(checks):
     """checks: [(name, bool)]; prints one line each, then PASSED or FAILED; returns the exit code"""
     ok = True
