@@ -5,7 +5,8 @@
 # $(TLSPH_CACHE) (default ~/.cache/tlsph): a second run is fast.
 
 BUILD        ?= build
-MAIN_EXAMPLE ?= crack-branching
+MAIN_EXAMPLE ?= fracture
+VARIANT      ?= recommended
 JOBS         ?= 2
 PYTHON       ?= /usr/bin/python3
 CMAKE_ARGS   ?=
@@ -45,7 +46,7 @@ build: configure
 
 run: build
 	@set -e; ex=examples/$(MAIN_EXAMPLE); \
-	if [ -f "$$ex/run.sh" ]; then echo "running $$ex/run.sh"; bash "$$ex/run.sh"; \
+	if [ -f "$$ex/run.sh" ]; then echo "running $$ex/run.sh (VARIANT=$(VARIANT))"; VARIANT=$(VARIANT) bash "$$ex/run.sh"; \
 	elif [ -f "$$ex/Makefile" ]; then $(MAKE) -C "$$ex"; \
 	else echo "make run: no $$ex/run.sh (or Makefile): main example '$(MAIN_EXAMPLE)' missing" >&2; exit 1; fi
 

@@ -106,7 +106,7 @@ kalthoff() {
   for h in 1.33 2.0; do
     for dx in 0.00166666666666667 0.00133333333333333 0.00111111111111111 0.001; do
       m=$(awk "BEGIN{printf \"%.3g\", $dx*1000}")
-      run "$d" in.kalthoff-2d "kal-h$h-dx$m" -var dx $dx -var hdx $h -var tend 110e-6 -var timg 0
+      run "$d" in.kalthoff-2d "kal-h$h-dx$m" -var model thesis -var dx $dx -var hdx $h -var tend 110e-6 -var timg 0
       [ -f "$OUT/kal-h$h-dx$m.crack.json" ] && [ "${FORCE:-0}" != 1 ] ||
         "$PY" "$d/summarise.py" "$OUT/kal-h$h-dx$m" --label "h $h dx, dx $m mm" > "$OUT/kal-h$h-dx$m.txt"
     done

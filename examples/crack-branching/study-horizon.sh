@@ -39,7 +39,7 @@ for c in "${cases[@]}"; do
   name=$1 dx=$2 hdx=$3
   names+=("$name")
   FORCE="${FORCE:-1}" ../common/run_case.sh in.crack-branching out "$name" \
-    -var dx "$dx" -var hdx "$hdx" -var tend 90e-6 -var timg 10e-6 || true
+    -var model thesis -var dx "$dx" -var hdx "$hdx" -var tend 90e-6 -var timg 10e-6 || true
   "$py" summarise.py out/"$name" --dx "$dx" --label "$name (dx $dx, h $hdx dx)" \
     > out/summary-"$name".txt || echo "summarise failed for $name" >&2
 done

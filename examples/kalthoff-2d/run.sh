@@ -1,6 +1,9 @@
 #!/bin/bash
 # 2D Kalthoff-Winkler plate impact (thesis section 3.2.1.1), full plate, plane strain,
-# 110 us of impact at 16.5 m/s.  Runs four cases, one after the other (1 MPI rank):
+# 110 us of impact at 16.5 m/s, the deck's default model (recommended: criterion
+# tip branch yoffe; add -var model thesis for the thesis's method, e.g.
+# NAME=kalthoff-2d-thesis bash run.sh -var model thesis).  Runs four cases, one
+# after the other (1 MPI rank):
 #   kalthoff-2d                 dx = 1 mm    (20,000 particles), correction setup (package
 #                               default, the thesis's: the correction is kept from setup)
 #   kalthoff-2d-coarse          dx = 1.67 mm ( 7,200 particles), correction setup
@@ -18,7 +21,8 @@
 #         CASES="fine coarse" bash run.sh   some of them (fine coarse fine-rebuild coarse-rebuild)
 #         NAME=x CASES=fine bash run.sh -var notch delete     a variant (any -var of in.kalthoff-2d)
 # Environment: LMP_TLSPH (default ../../build/lmp_tlsph), TLSPH_PYTHON (default
-# /usr/bin/python3), NP (MPI ranks, default 1), FORCE=0 to keep finished runs.
+# /usr/bin/python3), NP (MPI ranks, default 1), FORCE=0 to keep finished runs,
+# PROGRESS=1 for a progress line every 5 s.
 set -eu
 cd "$(dirname "$0")"
 py="${TLSPH_PYTHON:-/usr/bin/python3}"

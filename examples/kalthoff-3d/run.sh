@@ -1,6 +1,7 @@
 #!/bin/bash
 # 3D Kalthoff-Winkler plate impact (thesis section 3.2.1.2), full plate (both
-# notches, whole thickness), impact at 30 m/s, 100 us simulated.  Cases, run one
+# notches, whole thickness), impact at 30 m/s, 100 us simulated, the deck's
+# default model (recommended; -var model thesis for the thesis's).  Cases, run one
 # after the other on NP MPI ranks (default 2):
 #   smoke    kalthoff-3d-smoke    dx = 25/14 mm = 1.786 mm, 56 x 112 x 5 = 31,360 particles
 #                                 (plate 8.93 mm thick): a quick check, not converged

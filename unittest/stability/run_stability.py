@@ -308,7 +308,7 @@ def kalthoff(a, v0):
     matfile = os.path.join(a.examples, "..", "potentials", "tlsph_materials.tlsph")
     d, out, bad, names, T = run_checked(
         a, name, deck, extra=["-var", "dx", "0.00166666666666667", "-var", "v0", str(v0),
-                              "-var", "tend", "40e-6", "-var", "timg", "0", "-var", "out", name,
+                              "-var", "tend", "40e-6", "-var", "timg", "0", "-var", "out", name, "-var", "model", "thesis",
                               "-var", "matfile", matfile])
     if bad:
         return bad, {}
