@@ -15,7 +15,7 @@ Two independent evaluations:
     theta_0 the tip angle fixed by the arc-length condition.
 
 Run `python3 elastica.py` for the self-test against the reference table
-(shared/reference/REFERENCE.md) and a small table.
+(doc/references.rst, "Large-deflection cantilever") and a small table.
 """
 
 import math
@@ -24,7 +24,7 @@ import warnings
 from scipy.integrate import IntegrationWarning, quad, solve_ivp
 from scipy.optimize import brentq
 
-# REFERENCE.md, Bisshopp & Drucker: alpha -> (tip angle deg, v/L, u/L)
+# doc/references.rst, Bisshopp & Drucker: alpha -> (tip angle deg, v/L, u/L)
 REFERENCE = {1.0: (26.434, 0.30172, 0.05643), 10.0: (81.949, 0.81061, 0.55500)}
 
 

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Summary of a crack-branching run: the crack measured by tools/crack_measure.py
-next to the thesis's numbers and the acceptance criteria of the benchmark.
+next to the thesis's numbers and the acceptance criteria of the benchmark
+(both from examples/common/acceptance.py; the branching window 25-45 us is that
+of issues 12 and 26).
 
   summarise.py PREFIX [--window S] [--threshold PHI] [--dx DX]
 
@@ -24,13 +26,11 @@ here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, '..', '..', 'tools'))
 sys.path.insert(0, os.path.join(here, '..', 'common'))
 import crack_measure as cm  # noqa: E402
-
-RAYLEIGH = 2125.0      # m/s, plane strain (REFERENCE.md)
-DX_DECK = 0.1 / 300    # m, the deck's spacing
-THESIS = dict(initiation=8e-6, branching=33e-6, edge=56e-6)
-
-
+import acceptance as A  # noqa: E402  (../common: the acceptance bands, the thesis's numbers)
 from run_info import git_rev, log_info, us  # noqa: E402  (../common)
+
+RAYLEIGH = A.RAYLEIGH_GLASS.value      # m/s, plane strain (doc/references.rst)
+DX_DECK = 0.1 / 300    # m, the deck's spacing
 
 
 def main():
@@ -72,24 +72,29 @@ def main():
     def row(q, meas, thesis, crit, ok):
         rows.append((q, meas, thesis, crit, '-' if ok is None else ('yes' if ok else 'NO')))
 
-    row('crack initiation', us(ini), '~8 us', '< 15 us', ini is not None and ini < 15e-6)
+    t0, t1 = A.BR_WINDOW.value
+    row('crack initiation', us(ini), f'~{A.us(A.THESIS_BR_INITIATION.value)}',
+        f'< {A.us(A.BR_INITIATION_BEFORE.value)}',
+        ini is not None and ini < A.BR_INITIATION_BEFORE.value)
     row('branching time (persistent 2 branches)', us(br) + (f' (detected {us(c["branching_detected_time"])})'
                                                              if br is not None else ''),
-        '~33 us', '25 .. 40 us', br is not None and 25e-6 <= br <= 40e-6)
-    row('main branches at the end', f'{nfin} (max {c["branches_max_persistent"]})', '2', '2',
-        nfin == 2 and c['branches_max_persistent'] == 2)
+        f'~{A.us(A.THESIS_BR_BRANCHING.value)}', f'{t0 * 1e6:g} .. {t1 * 1e6:g} us',
+        A.in_band(br, A.BR_WINDOW))
+    nb = A.BR_MAIN_BRANCHES.value
+    row('main branches at the end', f'{nfin} (max {c["branches_max_persistent"]})', str(nb), str(nb),
+        nfin == nb and c['branches_max_persistent'] == nb)
     row('max tip speed', 'n/a' if vmax is None else f'{vmax:.0f} m/s at {us(c["speed_max_time"])}',
         '< Rayleigh', f'<= {RAYLEIGH:.0f} m/s', vmax is not None and vmax <= RAYLEIGH)
     row('spurious branches / damage off the crack',
         f'{side} short side branches, {other} cracked particles off the crack',
-        'none', 'none', side == 0 and other == 0 and c['branches_max_persistent'] <= 2)
+        'none', 'none', side == 0 and other == 0 and c['branches_max_persistent'] <= nb)
     row('both branches reach the right edge',
         (f'yes, at {us(edge2)}' if edge2 is not None else
          f'no: {nat} branch(es) there; the crack (one tip) reached it at {us(c["target_reached_time"])}'
          if c['target_reached_time'] is not None else
          f'no ({nat} branch(es) at x = 100 mm; crack tip at x = '
          f'{c["tip_final"][0] * 1e3:.1f} mm at {us(tend)})' if c['tip_final'] else 'no'),
-        '56 us', 'yes', edge2 is not None)
+        A.us(A.THESIS_BR_EDGE.value), 'yes', edge2 is not None)
     lines = []
     lines.append(f'crack branching {a.label}: {p}')
     lines.append(f'code: {git_rev()}, binary md5 '

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Summary of a 2D Kalthoff-Winkler run: both cracks measured by
-tools/crack_measure.py, next to the thesis's and the experiment's numbers.
+tools/crack_measure.py, next to the thesis's and the experiment's numbers
+(examples/common/acceptance.py).
 
   summarise.py PREFIX [--label L] [--window S] [--threshold PHI]
 
@@ -19,11 +20,10 @@ here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, '..', '..', 'tools'))
 sys.path.insert(0, os.path.join(here, '..', 'common'))
 import crack_measure as cm  # noqa: E402
-
-RAYLEIGH = 2803.0   # m/s, plane strain (REFERENCE.md)
-
-
+import acceptance as A  # noqa: E402  (../common: the acceptance bands, the thesis's numbers)
 from run_info import git_rev, log_info, us  # noqa: E402  (../common)
+
+RAYLEIGH = A.RAYLEIGH_STEEL.value   # m/s, plane strain (doc/references.rst)
 
 
 def main():
@@ -72,16 +72,21 @@ def main():
         e = min(c['edge_reached_time'], key=c['edge_reached_time'].get)
         return f"{us(c['target_reached_time'])} ({e})"
 
+    th = A.THESIS_KW_ANGLES.value
+    exp = f'~{A.EXP_KW_ANGLE.value:g} deg'
     rows = [
         ('crack angle to the impact direction, whole crack', f(U['angle_deg'], '.1f') + ' deg',
-         f(L['angle_deg'], '.1f') + ' deg', '68 deg (1.67 mm: 52)', '~70 deg'),
+         f(L['angle_deg'], '.1f') + ' deg', f'{th[1.0]:g} deg (1.67 mm: {th[1.67]:g})', exp),
         (f'initial kink angle (fit within {a.angle_near * 1e3:.0f} mm of the tip)',
-         f(U['angle_near_deg'], '.1f') + ' deg', f(L['angle_near_deg'], '.1f') + ' deg', '-', '~70 deg'),
+         f(U['angle_near_deg'], '.1f') + ' deg', f(L['angle_near_deg'], '.1f') + ' deg', '-', exp),
         ('initiation time', us(U['initiation_time']), us(L['initiation_time']),
-         '24 us (1.67 mm: 30)', '-'),
-        ('time to reach a plate edge', edge(U), edge(L), '98 us (1.67 mm: 110, far edge)', '-'),
+         f'{A.us(A.THESIS_KW_INITIATION.value)} (1.67 mm: {A.THESIS_KW_INITIATION_COARSE.value * 1e6:g})',
+         '-'),
+        ('time to reach a plate edge', edge(U), edge(L),
+         f'{A.us(A.THESIS_KW_EDGE.value)} (1.67 mm: {A.THESIS_KW_EDGE_COARSE.value * 1e6:g}, far edge)',
+         '-'),
         ('peak crack speed', f(U['speed_max'], '.0f') + ' m/s', f(L['speed_max'], '.0f') + ' m/s',
-         '1581 m/s', f'< Rayleigh {RAYLEIGH:.0f} m/s'),
+         f'{A.THESIS_KW_SPEED.value:.0f} m/s', f'< Rayleigh {RAYLEIGH:.0f} m/s'),
         ('branches / short side branches', f"{U['branches_max_persistent']} / {U['side_branches_max']}",
          f"{L['branches_max_persistent']} / {L['side_branches_max']}", '1 / 0', '1'),
         ('final crack length (chord from the notch tip)', f(U['length_final'] * 1e3, '.1f') + ' mm',

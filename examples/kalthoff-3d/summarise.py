@@ -2,7 +2,7 @@
 """Summary of a 3D Kalthoff-Winkler run: both cracks measured by
 tools/crack_measure.py on the mid-thickness particle layer and on the
 through-thickness projection, next to the thesis's, the literature's and the
-experiment's numbers.
+experiment's numbers (examples/common/acceptance.py).
 
   summarise.py PREFIX [--label L] [--window S] [--threshold PHI]
 
@@ -37,9 +37,10 @@ here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, '..', '..', 'tools'))
 sys.path.insert(0, os.path.join(here, '..', 'common'))
 import crack_measure as cm  # noqa: E402
+import acceptance as A  # noqa: E402  (../common: the acceptance bands, the thesis's numbers)
 from run_info import git_rev, log_info, us  # noqa: E402  (../common)
 
-RAYLEIGH = 2803.0   # m/s, plane strain / 3D (REFERENCE.md)
+RAYLEIGH = A.RAYLEIGH_STEEL.value   # m/s, plane strain / 3D (doc/references.rst)
 
 
 def reduce_dump(path, out_mid, out_proj):
@@ -314,20 +315,20 @@ def main():
         ('crack angle to the impact direction, whole crack',
          f(U['angle_deg'], '.1f') + ' deg', f(L_['angle_deg'], '.1f') + ' deg',
          f"{f(PU['angle_deg'], '.1f')} / {f(PL['angle_deg'], '.1f')} deg",
-         '65 deg, rising to 70', '~70 deg'),
+         A.THESIS_KW3D_ANGLE.value, f'~{A.EXP_KW_ANGLE.value:g} deg'),
         (f'initial kink angle (fit within {a.angle_near * 1e3:.0f} mm of the tip)',
          f(U['angle_near_deg'], '.1f') + ' deg', f(L_['angle_near_deg'], '.1f') + ' deg',
          f"{f(PU['angle_near_deg'], '.1f')} / {f(PL['angle_near_deg'], '.1f')} deg",
-         '65 deg', '~70 deg'),
+         f'{A.THESIS_KW3D_KINK.value:g} deg', f'~{A.EXP_KW_ANGLE.value:g} deg'),
         ('initiation time (crack >= 3 dx)', us(U['initiation_time']), us(L_['initiation_time']),
-         f"{us(PU['initiation_time'])} / {us(PL['initiation_time'])}", '14 us', '-'),
+         f"{us(PU['initiation_time'])} / {us(PL['initiation_time'])}", A.us(A.THESIS_KW3D_INITIATION.value), '-'),
         ('first growth (crack >= 1 dx)', us(first_growth(M, 'upper', dx)), us(first_growth(M, 'lower', dx)),
          f"{us(first_growth(P, 'upper', dx))} / {us(first_growth(P, 'lower', dx))}", '-', '-'),
         ('time to reach a plate edge', edge(U), edge(L_), f"{edge(PU)} / {edge(PL)}",
-         '76 us (side edges)', '-'),
+         f'{A.us(A.THESIS_KW3D_EDGE.value)} (side edges)', '-'),
         ('peak crack speed', f(U['speed_max'], '.0f') + ' m/s', f(L_['speed_max'], '.0f') + ' m/s',
          f"{f(PU['speed_max'], '.0f')} / {f(PL['speed_max'], '.0f')} m/s",
-         '2236 m/s', f'< Rayleigh {RAYLEIGH:.0f} m/s'),
+         f'{A.THESIS_KW3D_SPEED.value:.0f} m/s', f'< Rayleigh {RAYLEIGH:.0f} m/s'),
         ('branches / short side branches', f"{U['branches_max_persistent']} / {U['side_branches_max']}",
          f"{L_['branches_max_persistent']} / {L_['side_branches_max']}",
          f"{PU['branches_max_persistent']} / {PU['side_branches_max']}, "

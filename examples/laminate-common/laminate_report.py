@@ -92,7 +92,7 @@ def case_markdown(res):
     if kind == "beam":
         w("CLT check (linear run, stored mesh):\n")
         w(f"- CLT narrow beam D* = 1/d11 = {cl['Dstar_free']:.1f} N m per unit width "
-          f"(= 18.87/22.16 x 5^3 of REFERENCE.md): w = PL^3/(3 D* b) = {cl['w_clt_free'] * 1e3:.4f} mm")
+          f"(= 18.87/22.16 x 5^3 of doc/references.rst): w = PL^3/(3 D* b) = {cl['w_clt_free'] * 1e3:.4f} mm")
         if abs(cl['Dstar_twist_restrained'] - cl['Dstar_free']) > 1e-9 * cl['Dstar_free']:
             w(f"- twist curvature restrained (kappa_xy = 0): D* = {cl['Dstar_twist_restrained']:.1f} N m, "
               f"w = {cl['w_clt_twist_restrained'] * 1e3:.4f} mm")
