@@ -46,7 +46,9 @@ def panel(ax, prefix, title):
     dxe = math.sqrt(ext[0] * ext[1] / max(len(X0) - 1, 1))
     w_in = ax.get_position().width * ax.figure.get_figwidth()
     s = max(0.2, (dxe * w_in * 72.0 / (ext[0] * 1.06)) ** 2)
-    ax.scatter(X0[:, 0], X0[:, 1], s=s, c='0.88', marker='s', linewidths=0)
+    from matplotlib.patches import Rectangle
+    lo, hi = X0.min(axis=0) - dxe / 2, X0.max(axis=0) + dxe / 2
+    ax.add_patch(Rectangle(lo, *(hi - lo), facecolor='0.9', edgecolor='0.5', lw=0.6))
     m = np.flatnonzero(phi > 0)
     m = m[np.argsort(phi[m])]
     sc = ax.scatter(X0[m, 0], X0[m, 1], c=phi[m], s=s, cmap='jet', vmin=0, vmax=1,

@@ -12,8 +12,9 @@
 # and the acceptance bands); this script gathers into out/ here:
 #   summary.txt       both summaries, and the wall time of each run
 #   overview.png      the final damage of both runs side by side (README's picture)
+#   results.json, table.md   the numbers README shows and their table (report.py)
 #   *.montage.png, *.speed.png   copies of the examples' montages and speed plots
-#   *.full.NNNNNN.png nothing: the full-field dumps stay in the examples' out/
+# (the full-field dumps, NAME.full.dump, stay in the examples' out/)
 # VARIANT=thesis: the thesis's method instead (crack-branching with h = 1.33 dx
 # and h = 2 dx, Kalthoff-Winkler 2D at 1 mm), out/summary-thesis.txt.
 # Environment: LMP_TLSPH, TLSPH_PYTHON, FORCE=0 to keep finished runs,
@@ -51,6 +52,12 @@ esac
 if [ "$variant" = recommended ]; then
   "$py" overview.py ../crack-branching/out/crack-branching ../kalthoff-2d/out/kalthoff-2d \
     -o out/overview.png || echo "overview.py failed (matplotlib?)"
+  # the numbers README shows, and its table (report.py write README.md
+  # out/results.json puts them there; examples/fracture/results.json is the
+  # committed record, checked against README by ctest project.make_run_table)
+  "$py" report.py extract ../crack-branching/out/crack-branching ../kalthoff-2d/out/kalthoff-2d \
+    -o out/results.json && "$py" report.py table out/results.json > out/table.md \
+    && { echo; cat out/table.md; } >> "$summary"
 fi
 cat "$summary"
 echo "summary: examples/fracture/$summary; pictures: examples/fracture/out/*.png"
