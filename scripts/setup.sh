@@ -27,6 +27,8 @@ PACKAGES=(lammps liblammps-dev python3-lammps libeigen3-dev libopenmpi-dev openm
           libgtest-dev cmake ninja-build g++ make dpkg-dev python3-numpy python3-matplotlib
           xz-utils
           python3-sphinx  # the doc/ build test (doc.sphinx_html)
+          python3-meshio  # tools/dump2vtk.py (dumps to VTK for ParaView; ctest output.dump2vtk)
+          python3-yaml    # CITATION.cff read by ctest project.basics
           calculix-ccx)  # ccx: the FE reference of the laminate examples (unittest/fe)
 
 is_installed() {
