@@ -252,7 +252,13 @@ void one_input(const uint8_t *data, size_t size)
   if (ntypes >= 3) deck.emplace_back("set atom 6*8 type 3");
   deck.emplace_back(dim == 2 ? "set group all volume 1e-6" : "set group all volume 1e-9");
   deck.emplace_back(dim == 2 ? "set group all mass 7.8e-3" : "set group all mass 7.8e-6");
-  deck.emplace_back("pair_style " + style + " " + ps_args);
+  // the masses are those of steel, the materials and h are fuzzed: without
+  // the overrides of the set-up checks (first, so that the fuzzed arguments
+  // may set them again) most runs would stop at the mass/volume or partner
+  // check before the force code
+  const std::string ps_line =
+      "pair_style " + style + " check_partners no check_volume no " + ps_args;
+  deck.emplace_back(ps_line);
   if (file_form) {
     std::string text;
     for (size_t k = 2; k < lines.size(); k++) text += lines[k] + "\n";
@@ -266,7 +272,7 @@ void one_input(const uint8_t *data, size_t size)
       if (lines[k].find_first_not_of(" \t\r") != std::string::npos)
         deck.emplace_back("pair_coeff " + plain(lines[k]));
   }
-  if (reissue) deck.emplace_back("pair_style " + style + " " + ps_args);
+  if (reissue) deck.emplace_back(ps_line);
   deck.emplace_back("timestep 1e-9");
   if (run_steps) {
     deck.emplace_back("fix 1 all nve");

@@ -60,7 +60,8 @@ DEFINES="-DLAMMPS_MEMALIGN=64 -DLAMMPS_SMALLBIG -DLMP_KOKKOS -DLMP_PLUGIN -DMPIC
 FLAGS="-O2 -DNDEBUG -fPIC -std=c++14"
 S=$LAMMPS_SOURCE_DIR/src
 INCLUDES="-I$REPO/src/USER-TLSPH/kokkos -I$REPO/src/USER-TLSPH -I$S -I$S/PERI -I$S/PLUGIN -I$S/KOKKOS ${MPI_INC[*]} -isystem $KK_INC"
-OURS="-DTLSPH_POTENTIALS_DIR=\\\"$REPO/potentials\\\" -DTLSPH_KK_PLUGIN"
+TLSPH_VERSION=$(head -n 1 "$REPO/VERSION" | tr -d '[:space:]')
+OURS="-DTLSPH_POTENTIALS_DIR=\\\"$REPO/potentials\\\" -DTLSPH_VERSION=\\\"$TLSPH_VERSION\\\" -DTLSPH_KK_PLUGIN"
 
 # the flags of a cached KOKKOS LAMMPS built from this source: must be ours
 # (-Dlammps_EXPORTS only marks its own library's objects)

@@ -41,6 +41,7 @@ FixTLSPHBonds::FixTLSPHBonds(LAMMPS *lmp, int narg, char **arg) :
   tallied_step = -1;
   rebuild = 1;
   fresh = 0;
+  check_pending = 0;
   nfrozen = 0;
   frozen = nullptr;
   cutoff = 0.0;
@@ -198,6 +199,7 @@ void FixTLSPHBonds::find_partners()
 #endif
   first = 0;
   fresh = 1;
+  check_pending = 1;
 
   // the neighbor list is built from current positions: partners within 2h
   // of X are all in it only if no particle has moved too far from x0 yet
@@ -246,9 +248,11 @@ void FixTLSPHBonds::find_partners()
       if (within(i, j)) npartner[i]++;
     }
   }
-  int mymax = 1;
+  int mymax = 0;
   for (int i = 0; i < nlocal; i++) mymax = MAX(mymax, npartner[i]);
   MPI_Allreduce(&mymax, &maxpartner, 1, MPI_INT, MPI_MAX, world);
+  const int maxfound = maxpartner;
+  maxpartner = MAX(maxpartner, 1);    // the arrays have at least one column
 
   memory->destroy(partner);
   memory->destroy(state);
@@ -274,7 +278,7 @@ void FixTLSPHBonds::find_partners()
   MPI_Allreduce(&nmine, &nbonds_total, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   if (comm->me == 0)
     utils::logmesg(lmp, "TLSPH bonds: {} reference partners in total (max {} per particle)\n",
-                   nbonds_total, maxpartner);
+                   nbonds_total, maxfound);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -78,6 +78,8 @@ class FixTLSPHBonds : public Fix {
   double **f_hg;        // hourglass and viscous force of this step, per atom: written
   double **f_visc;      //   by pair tlsph, turned into work in end_of_step()
   int fresh;           // 1 right after the partner search (pre-cracks are applied then)
+  int check_pending;   // 1 right after the partner search: the pair checks that every
+                       // particle has enough partners for a gradient (not after a restart)
   int rebuild;          // 1 after every neighbor build: the pair re-caches bonds
   bigint nbonds_total;  // all bonds (counted twice, once from each end) at setup
 

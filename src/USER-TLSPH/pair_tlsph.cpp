@@ -107,6 +107,7 @@ void PairTLSPH::allocate()
    pair_style tlsph h VALUE [alpha A] [beta B] [gamma G]
                             [hourglass thesis|conservative] [plane strain|stress]
                             [thickness T] [gradient linear|quadratic] [cutfactor C]
+                            [check_partners yes|no] [check_volume yes|no]
 ------------------------------------------------------------------------- */
 
 // the documented defaults of pair_style tlsph (doc/pair_tlsph.rst, "Default")
@@ -121,6 +122,8 @@ void PairTLSPH::set_defaults()
   cutfactor = 1.1;
   order = 2;
   thickness = 1.0;
+  check_partners = 1;
+  check_volume = 1;
 }
 
 void PairTLSPH::settings(int narg, char **arg)
@@ -175,10 +178,16 @@ void PairTLSPH::settings(int narg, char **arg)
       cutfactor = TLSPHInput::number(error, "pair_style tlsph", key, val);
       if (cutfactor < 1.0)
         error->all(FLERR, "pair_style tlsph: cutfactor must be >= 1, got {}", val);
+    } else if (key == "check_partners" || key == "check_volume") {
+      int flag;
+      if (strcmp(val, "yes") == 0) flag = 1;
+      else if (strcmp(val, "no") == 0) flag = 0;
+      else error->all(FLERR, "pair_style tlsph: {} must be 'yes' or 'no', got '{}'", key, val);
+      (key == "check_partners" ? check_partners : check_volume) = flag;
     } else {
       error->all(FLERR,
                  "pair_style tlsph: unknown keyword '{}' (allowed: h, alpha, beta, gamma, hourglass, "
-                 "plane, thickness, gradient, cutfactor)", key);
+                 "plane, thickness, gradient, cutfactor, check_partners, check_volume)", key);
     }
     iarg += 2;
   }
@@ -572,13 +581,18 @@ void PairTLSPH::init_style()
   // sanity checks of the per-particle data against the materials
   const int nlocal = atom->nlocal;
   int bad_volume = 0;
-  double worst = 0.0;
+  // the particle whose mass/volume is farthest from its material's rho
+  struct {
+    double rel;
+    int rank;
+  } worst = {0.0, comm->me}, worst_all;
+  int iworst = -1;
   for (int i = 0; i < nlocal; i++) {
     if (atom->vfrac[i] <= 0.0) bad_volume = 1;
     else {
       const double rho = atom->rmass[i] / atom->vfrac[i];
       const double rel = fabs(rho - mat[atom->type[i]].rho) / mat[atom->type[i]].rho;
-      worst = MAX(worst, rel);
+      if (rel > worst.rel) worst.rel = rel, iworst = i;
     }
   }
   int any_bad;
@@ -586,12 +600,46 @@ void PairTLSPH::init_style()
   if (any_bad)
     error->all(FLERR, "pair tlsph: every particle needs a volume > 0 (set ... volume, or the "
                       "volume column of read_data)");
-  double worst_all;
-  MPI_Allreduce(&worst, &worst_all, 1, MPI_DOUBLE, MPI_MAX, world);
-  if (worst_all > 1.0e-6 && comm->me == 0)
-    error->warning(FLERR, "pair tlsph: mass/volume of some particles differs from the rho of "
-                          "their material by up to {:.3g}%: the wave speed and viscosity use rho, "
-                          "the inertia uses the mass", 100.0 * worst_all);
+  MPI_Allreduce(&worst, &worst_all, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+  /* mass/volume against rho: the inertia uses the mass, the wave speed (the
+     time step of fix tlsph/dt) and the viscosity use rho, so a ratio k
+     between them changes the real wave speed against the assumed one by
+     sqrt(k). Up to 1e-6 is round-off of the input numbers. Above 1 % it is
+     not rounding either (numbers typed to 3 significant digits are within
+     0.5 %): a forgotten 'set ... volume' (atom_style peri's default volume
+     is 1: mass/volume is then ~100 % off) or 'set ... mass', another
+     material's mass, or volumes in other units -- an error, unless
+     'check_volume no' (e.g. mass scaling on purpose). In between: a warning. */
+  if (worst_all.rel > 1.0e-6) {
+    // the worst particle's numbers, from its rank
+    double w[5] = {0.0, 0.0, 0.0, 0.0, 0.0};    // tag, type, mass, volume, rho
+    if (comm->me == worst_all.rank && iworst >= 0) {
+      w[0] = (double) atom->tag[iworst];
+      w[1] = atom->type[iworst];
+      w[2] = atom->rmass[iworst];
+      w[3] = atom->vfrac[iworst];
+      w[4] = mat[atom->type[iworst]].rho;
+    }
+    MPI_Bcast(w, 5, MPI_DOUBLE, worst_all.rank, world);
+    const auto tag = (tagint) w[0];
+    const int type = (int) w[1];
+    const std::string what = fmt::format(
+        "particle {} (type {}) has mass {:.6g} and volume {:.6g}: mass/volume = {:.6g}, but its "
+        "material has rho = {:.6g} ({:.3g}% off)", tag, type, w[2], w[3], w[2] / w[3], w[4],
+        100.0 * worst_all.rel);
+    const std::string fix = fmt::format(
+        "set the volume to the particle's share of the body, 'set type {} volume <{}>' for a "
+        "lattice spacing dx, and the mass to rho*volume, 'set type {} mass <{:.6g}*volume>' (or "
+        "the volume and mass columns of read_data){}", type,
+        dim == 2 ? "dx^2 in 2D, dx^2 t with pair_style ... thickness t" : "dx^3 in 3D", type, w[4],
+        w[3] == 1.0 ? "; volume 1 is atom_style peri's default: is 'set ... volume' missing?" : "");
+    if (worst_all.rel > 0.01 && check_volume)
+      error->all(FLERR, "pair tlsph: {}: {}; to run on anyway (e.g. masses scaled on purpose) "
+                        "add 'check_volume no' to pair_style", what, fix);
+    if (comm->me == 0)
+      error->warning(FLERR, "pair tlsph: mass/volume differs from rho: {}; the wave speed and "
+                            "viscosity use rho, the inertia uses the mass", what);
+  }
 }
 
 double PairTLSPH::init_one(int i, int j)
@@ -700,7 +748,14 @@ void PairTLSPH::build_bond_cache()
   // Shepard sum kernel_scale * sum_j V_j W_ij (self included): about 1 inside
   // the body when the volumes match the kernel normalisation
   double shepard_max = 0.0;
-  int degraded = 0;
+  int shepard_i = -1;
+  int degraded = 0, nostress = 0;
+  // right after the partner search: the particles whose gradient cannot be
+  // formed (check_reference_partners); the one with the smallest ID is named
+  const bool check_now = bonds->check_pending;
+  tagint bad_tag = 0;
+  int bad_np = 0;
+  double bad_vol = 0.0, bad_dmin = 0.0;
   // largest |X_ij (minimum image of x0) - (x0c_j - x0c_i)| relative to |X_ij|
   double image_error = 0.0;
   tagint image_i = 0;
@@ -752,7 +807,7 @@ void PairTLSPH::build_bond_cache()
     }
     const int nall = n;
     n = nbond[i];
-    shepard_max = MAX(shepard_max, shepard);
+    if (shepard > shepard_max || shepard_i < 0) shepard_max = shepard, shepard_i = i;
     BondCache *b = scratch.data();
     double *fz = (correction_from_all_partners && bonds->nfrozen) ? bonds->frozen[i] : nullptr;
     if (fz && fz[0] == 1.0) {
@@ -761,7 +816,21 @@ void PairTLSPH::build_bond_cache()
       for (int k = 0; k < bonds->nfrozen; k++) Q[i][k] = fz[1 + k];
       apply_particle(i, b, nall, vj.data());
     } else {
-      if (correct_particle(i, b, nall, vj.data()) < order) degraded++;
+      const int achieved = correct_particle(i, b, nall, vj.data());
+      if (achieved < order) degraded++;
+      if (achieved == 0) {
+        nostress++;
+        if (check_now && (bad_tag == 0 || tag[i] < bad_tag)) {
+          bad_tag = tag[i];
+          bad_np = np;
+          bad_vol = vfrac[i];
+          bad_dmin = 0.0;
+          for (int m = 0; m < nall; m++) {
+            const double r = sqrt(dot3(b[m].X, b[m].X));
+            if (m == 0 || r < bad_dmin) bad_dmin = r;
+          }
+        }
+      }
       if (fz) {
         for (int k = 0; k < bonds->nfrozen; k++) fz[1 + k] = Q[i][k];
         fz[0] = 1.0;
@@ -783,20 +852,71 @@ void PairTLSPH::build_bond_cache()
     nb += nall;
   }
   ndegraded = degraded;
+  if (check_now) {
+    bonds->check_pending = 0;
+    check_reference_partners(nostress, bad_tag, bad_np, bad_vol, bad_dmin);
+  }
   if (image_error > 1.0e-8)
     error->one(FLERR, "pair tlsph: particle {} has moved by half a periodic box length or more "
                       "since its reference position was set (its bond vectors no longer follow "
                       "from the minimum image): not supported; enlarge the periodic box",
                image_i);
-  if (report_fallback) {
-    double all;
-    MPI_Allreduce(&shepard_max, &all, 1, MPI_DOUBLE, MPI_MAX, world);
-    if ((all < 0.5 || all > 2.0) && comm->me == 0)
-      error->warning(FLERR, "pair tlsph: the particle volumes do not match the kernel "
-                            "normalisation (max sum_j V_j W_ij = {:.3g}, about 1 expected): {}",
-                     all, dim == 2 ? "in 2D give the out-of-plane thickness contained in the "
-                                     "volumes with the 'thickness' keyword"
-                                   : "check the volume units and h");
+  /* The kernel normalisation: sum_j V_j W_ij (the particle itself included,
+     V in the kernel's measure: per thickness in 2D) is the SPH interpolant
+     of 1, about 1 inside a body whose volumes tile it -- within a few % on a
+     regular lattice for h >= dx (0.99 to 1.01 for h = 1.33 dx and 2 dx, 2D
+     and 3D), less near a surface (the largest over all particles is
+     taken). Off by a factor 2 or more, the volumes do not fit the spacing
+     and h: a forgotten 'set ... volume' (default 1), volumes in other units,
+     a 2D volume with a thickness not given by 'thickness', or h smaller
+     than the spacing (then the particle's own term alone, 10/(7 pi h^2) V,
+     exceeds 1). An error unless 'check_volume no'. Checked in the reference
+     configuration, right after the partner search, when every bond is
+     intact (later, broken bonds leave fragments with smaller sums). */
+  if (check_now) {
+    struct {
+      double v;
+      int rank;
+    } mine = {shepard_i >= 0 ? shepard_max : -1.0, comm->me}, all;
+    MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+    if (all.v >= 0.0 && (all.v < 0.5 || all.v > 2.0)) {
+      double w[3] = {0.0, 0.0, 0.0};    // tag, volume, nearest partner distance
+      if (comm->me == all.rank && shepard_i >= 0) {
+        w[0] = (double) tag[shepard_i];
+        w[1] = vfrac[shepard_i];
+        for (int m = 0; m < nbond[shepard_i]; m++) {
+          double X[3];
+          bond_vector(shepard_i, m, X);
+          const double r = sqrt(dot3(X, X));
+          if (m == 0 || r < w[2]) w[2] = r;
+        }
+      }
+      MPI_Bcast(w, 3, MPI_DOUBLE, all.rank, world);
+      const double t = (dim == 2) ? thickness : 1.0;
+      std::string expect;
+      if (w[2] > 0.0)
+        expect = fmt::format(" (its nearest partner is {:.4g} away: on a lattice of that spacing "
+                             "its volume would be {:.4g})", w[2],
+                             dim == 2 ? w[2] * w[2] * t : w[2] * w[2] * w[2]);
+      else
+        expect = fmt::format(" (it has no partner within 2h = {:.4g}: is h smaller than the "
+                             "particle spacing?)", 2.0 * h);
+      const std::string what = fmt::format(
+          "the particle volumes do not match the kernel normalisation: sum_j V_j W_ij = {:.4g} "
+          "at particle {} (volume {:.4g}, h = {:.4g}), about 1 expected (0.5 to 2 accepted){}",
+          all.v, (tagint) w[0], w[1], h, expect);
+      const std::string fix = fmt::format(
+          "each particle's volume must be its share of the body, 'set type N volume <{}>' for a "
+          "lattice spacing dx, and its mass rho*volume ('set type N mass ...'), or the volume and "
+          "mass columns of read_data (atom_style peri's default volume is 1)",
+          dim == 2 ? fmt::format("dx^2 in 2D, dx^2 t with pair_style ... thickness t (t = {:.4g} "
+                                 "now)", thickness)
+                   : "dx^3 in 3D");
+      if (check_volume)
+        error->all(FLERR, "pair tlsph: {}: {}; to run on anyway add 'check_volume no' to "
+                          "pair_style", what, fix);
+      if (comm->me == 0) error->warning(FLERR, "pair tlsph: {} ({})", what, fix);
+    }
   }
   bond_start[nlocal] = nb;
   cache_version++;
@@ -818,6 +938,72 @@ void PairTLSPH::unpack_bonds(int i, int n, std::vector<BondCache> &b,
     make_bond(kernel, X, vfrac[i], vfrac[j], j, lean.k[s + m], b[m], kernel_scale);
     vj[m] = vfrac[j];
   }
+}
+
+/* Right after the partner search: every particle needs a corrected
+   gradient. The correction inverts the moment matrix of its reference
+   partners (tlsph_particle.h, TLSPH::correction): sum_j V_j w_ij p p^T over
+   the partners within 2h, p = X_ij/h (linear: DIM x DIM) or X_ij/h and its
+   squares and products (quadratic: 5 x 5 in 2D, 9 x 9 in 3D). It is
+   invertible only with at least DIM partners that do not lie on one line
+   (2D) or in one plane (3D) -- with the particle itself DIM+1 points that
+   span the space -- and, for the quadratic basis, at least 5 (2D) or 9 (3D)
+   suitably spread ones. A quadratic matrix that is singular or
+   ill-conditioned falls back to the linear one (corners and thin strips:
+   accepted, reported once per run in refresh_bond_cache); a linear one that
+   fails leaves Q = 0: the particle has F = I, carries no stress of its own
+   and only feels its partners. That is the error here (nbad: the number of
+   such particles on this rank; bad_*: the one with the smallest ID, its
+   partner count, volume and nearest partner distance), unless
+   'check_partners no' (isolated particles on purpose): then a warning. */
+void PairTLSPH::check_reference_partners(int nbad, tagint bad_tag, int bad_np, double bad_vol,
+                                         double bad_dmin)
+{
+  int nall = 0;
+  MPI_Allreduce(&nbad, &nall, 1, MPI_INT, MPI_SUM, world);
+  if (nall == 0) return;
+  // the bad particle with the smallest ID, and its numbers from its rank
+  struct {
+    double tag;
+    int rank;
+  } mine = {nbad ? (double) bad_tag : 1.0e300, comm->me}, first;
+  MPI_Allreduce(&mine, &first, 1, MPI_DOUBLE_INT, MPI_MINLOC, world);
+  double w[3] = {(double) bad_np, bad_vol, bad_dmin};
+  MPI_Bcast(w, 3, MPI_DOUBLE, first.rank, world);
+  const int np = (int) w[0];
+  const double t = (dim == 2) ? thickness : 1.0;
+  // the spacing: from the nearest partner, else from the particle's volume
+  const double dx = np > 0 ? w[2] : (dim == 2 ? sqrt(w[1] / t) : cbrt(w[1]));
+  const std::string spacing =
+      np > 0 ? fmt::format("nearest partner {:.4g} away", dx)
+             : fmt::format("particle spacing dx = {:.4g} from its volume", dx);
+  const char *const shape = (dim == 2) ? "on one line" : "in one plane";
+  // with DIM or more partners the matrix is singular because they are collinear (coplanar)
+  const std::string degenerate = np >= dim ? fmt::format(", all {}", shape) : "";
+  const std::string what = fmt::format(
+      "particle {} has {} reference partner{}{} (h = {:.4g}, kernel support 2h = {:.4g}; {}, "
+      "h = {:.3g} dx): a corrected gradient needs at least {} partners within 2h, not all {} "
+      "({} for the quadratic gradient); {} of {} particles have too few", (tagint) first.tag,
+      np, np == 1 ? "" : "s", degenerate, h, 2.0 * h, spacing, h / dx, dim, shape,
+      dim == 2 ? 5 : 9, nall, atom->natoms);
+  // what to change: h below the spacing (the usual mistake), else the geometry
+  std::string advice;
+  if (h < 0.999 * dx)
+    advice = fmt::format("h must be larger than the particle spacing (h = 1.33 dx is the usual "
+                         "value: h {:.4g} for this spacing)", 1.33 * dx);
+  else if (np >= dim)
+    advice = "h is not smaller than the spacing, but a body one particle thick has no gradient "
+             "across it: make it at least two particles thick";
+  else
+    advice = "h is not smaller than the spacing: the particle lies apart from the others (check "
+             "its position)";
+  if (check_partners)
+    error->all(FLERR, "pair_style tlsph: {}: {}; to run on with these particles carrying no "
+                      "stress of their own (e.g. isolated particles on purpose) add "
+                      "'check_partners no' to pair_style", what, advice);
+  if (comm->me == 0)
+    error->warning(FLERR, "pair_style tlsph: {}: they carry no stress of their own "
+                          "(check_partners no)", what);
 }
 
 namespace {
@@ -1166,21 +1352,30 @@ void PairTLSPH::read_restart(FILE *fp)
 
 void PairTLSPH::write_restart_settings(FILE *fp)
 {
-  double v[9] = {h,         alpha, beta, gamma, (double) plane_stress,
-                 cutfactor, (double) order, thickness, (double) hg_form};
-  fwrite(v, sizeof(double), 9, fp);
+  // v[9]: the checks, 1000 + check_partners + 2 check_volume (the offset
+  // tells this layout from the one before the checks were stored)
+  double v[10] = {h,         alpha, beta, gamma, (double) plane_stress,
+                  cutfactor, (double) order, thickness, (double) hg_form,
+                  1000.0 + check_partners + 2.0 * check_volume};
+  fwrite(v, sizeof(double), 10, fp);
   fwrite(&dim, sizeof(int), 1, fp);
 }
 
 void PairTLSPH::read_restart_settings(FILE *fp)
 {
-  double v[9];
+  double v[10];
   if (comm->me == 0) {
-    utils::sfread(FLERR, v, sizeof(double), 9, fp, nullptr, error);
+    utils::sfread(FLERR, v, sizeof(double), 10, fp, nullptr, error);
     utils::sfread(FLERR, &dim, sizeof(int), 1, fp, nullptr, error);
   }
-  MPI_Bcast(v, 9, MPI_DOUBLE, 0, world);
+  MPI_Bcast(v, 10, MPI_DOUBLE, 0, world);
   MPI_Bcast(&dim, 1, MPI_INT, 0, world);
+  const int checks = static_cast<int>(v[9] - 1000.0);
+  if (!(v[9] == 1000.0 + checks && checks >= 0 && checks <= 3 && (dim == 2 || dim == 3)))
+    error->all(FLERR, "pair tlsph: the restart file's pair settings are not in this version's "
+                      "layout (written by another version of the package?)");
+  check_partners = checks & 1;
+  check_volume = (checks >> 1) & 1;
   h = v[0];
   alpha = v[1];
   beta = v[2];

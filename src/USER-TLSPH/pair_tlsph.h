@@ -115,6 +115,8 @@ class PairTLSPH : public Pair {
   double cutfactor;       // ghost cutoff = cutfactor * 2h
   int order;              // gradient correction: 1 linear (thesis), 2 quadratic
   double thickness;       // 2D: out-of-plane thickness contained in the particle volumes
+  int check_partners;     // 1: stop if a particle has too few reference partners for a gradient
+  int check_volume;       // 1: stop if the volumes (masses) do not fit h and the kernel (rho)
   int ndegraded;          // local particles whose correction fell back to a lower order
   int report_fallback;    // 1: log the fallback count at the next bond-cache build
   int dim;
@@ -187,6 +189,8 @@ class PairTLSPH : public Pair {
   int cache_version = 0;    // +1 at every build_bond_cache() (the /kk styles copy it then)
   double **x0c;       // reference positions consistent with the images of x (nmax)
   void build_bond_cache();
+  void check_reference_partners(int nbad, tagint bad_tag, int bad_np, double bad_vol,
+                                double bad_dmin);
   void set_reference_images();
   // full records of the bonds of local particle i, from the lean arrays
   // (for a new correction: tlsph/damage)

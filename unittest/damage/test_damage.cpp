@@ -1024,15 +1024,18 @@ double sc_from_lammps(int dim, double E, double nu, double Gc, double h, double 
   char fam[64] = "";
   if (family > 0.0) snprintf(fam, sizeof(fam), "family %.17g", family);
   LAMMPS *lmp = open_lammps();
-  char buf[400];
+  char buf[600];
+  // a lattice of spacing h/1.33, volumes dx^dim and masses rho V (the
+  // set-up checks of pair tlsph); s_c depends on the material and h only
+  const double dx = h / 1.33, V = dim == 2 ? dx * dx : dx * dx * dx;
   snprintf(buf, sizeof(buf),
-           "units si\ndimension %d\nboundary s s %s\natom_style peri\nlattice %s 0.001\n"
+           "units si\ndimension %d\nboundary s s %s\natom_style peri\nlattice %s %.17g\n"
            "region box block 0 3 0 3 %s\ncreate_box 1 box\ncreate_atoms 1 box\n"
-           "set type 1 volume 1e-9\nset type 1 mass 1e-6\n"
+           "set type 1 volume %.17g\nset type 1 mass %.17g\n"
            "pair_style tlsph/damage h %.17g %s\npair_coeff 1 1 E %.17g nu %.17g rho 2450 Gc %.17g\n"
            "run 0\n",
-           dim, dim == 2 ? "p" : "s", dim == 2 ? "sq" : "sc", dim == 2 ? "-0.5 0.5" : "0 3", h,
-           fam, E, nu, Gc);
+           dim, dim == 2 ? "p" : "s", dim == 2 ? "sq" : "sc", dx, dim == 2 ? "-0.5 0.5" : "0 3", V,
+           2450.0 * V, h, fam, E, nu, Gc);
   run_script(lmp, buf);
   const double s = damage_pair(lmp)->critical_stretch_of(1);
   delete lmp;

@@ -64,6 +64,33 @@ def fx(line, pair=PAIR, coeff=COEFF, dim=2):
     return deck(line + "\n", dim=dim, pair=pair, coeff=coeff)
 
 
+def pv(volume, mass, dim=2, pair=PAIR, coeff=COEFF):
+    """a deck whose particles get this volume and mass ('set' lines; None: not set,
+    atom_style peri's default 1)"""
+    v0, m0 = ("1e-6", "7.8e-3") if dim == 2 else ("1e-9", "7.8e-6")
+    head = HEAD[dim].format(atom_style="peri")
+    head = head.replace(f"set type 1 volume {v0}\n", "" if volume is None else f"set type 1 volume {volume}\n")
+    head = head.replace(f"set type 1 mass {m0}\n", "" if mass is None else f"set type 1 mass {mass}\n")
+    return head + pair + coeff + TAIL
+
+
+def loner(pair):
+    """the 2D block in a box twice as long, plus one particle 4 spacings away from
+    it (alone on purpose, e.g. a projectile)"""
+    head = HEAD[2].format(atom_style="peri").replace(
+        "region box block 0 6 0 4 -0.5 0.5\ncreate_box 2 box\ncreate_atoms 1 box\n",
+        "region box block 0 12 0 4 -0.5 0.5\ncreate_box 2 box\nregion body block 0 6 0 4 -0.5 0.5\n"
+        "create_atoms 1 region body\ncreate_atoms 1 single 10 2 0\n")
+    return head + pair + COEFF + TAIL
+
+
+def one_row():
+    """a single row of particles in 2D: every partner on one line"""
+    head = HEAD[2].format(atom_style="peri").replace("boundary s s p", "boundary s f p").replace(
+        "create_atoms 1 box\n", "region row block 0 6 1.9 2.1 -0.5 0.5\ncreate_atoms 1 region row\n")
+    return head + PAIR + COEFF + TAIL
+
+
 H = "h 0.00133"
 # (name, deck text, files {name: text}, pattern the ERROR line must match)
 CASES = [
@@ -105,6 +132,70 @@ CASES = [
     ("ps_h_kernel_underflow", ps("h 1e-200"), {}, r"pair_style tlsph: h = 1e-200 with cutfactor 1.1 is out of the range a 2D kernel can be computed in"),
     ("ps_h_kernel_overflow_3d", ps("h 1e120", dim=3), {}, r"pair_style tlsph: h = 1e\+120 with cutfactor 1.1 is out of the range a 3D kernel"),
     ("ps_cutoff_overflow", ps(f"{H} cutfactor 1e308"), {}, r"pair_style tlsph: h = 0.00133 with cutfactor 1e\+308 is out of the range"),
+    ("ps_check_partners_word", ps(f"{H} check_partners maybe"), {},
+     r"pair_style tlsph: check_partners must be 'yes' or 'no', got 'maybe'"),
+    ("ps_check_partners_missing", ps(f"{H} check_partners"), {},
+     r"pair_style tlsph: keyword 'check_partners' needs a value"),
+    ("ps_check_volume_word", ps(f"{H} check_volume off"), {},
+     r"pair_style tlsph: check_volume must be 'yes' or 'no', got 'off'"),
+    # ------------------------------------------------ h against the particle spacing
+    # (every particle needs DIM partners within 2h, not on one line / in one plane)
+    ("ps_h_below_spacing", ps("h 0.0001"), {},
+     r"pair_style tlsph: particle 1 has 0 reference partners \(h = 0.0001, kernel support 2h = "
+     r"0.0002; particle spacing dx = 0.001 from its volume, h = 0.1 dx\): a corrected gradient "
+     r"needs at least 2 partners within 2h, not all on one line .*35 of 35 particles have too "
+     r"few: h must be larger than the particle spacing \(h = 1.33 dx is the usual value: h "
+     r"0.00133 for this spacing\).*add 'check_partners no' to pair_style"),
+    ("ps_h_below_spacing_3d", ps("h 0.0004", dim=3), {},
+     r"pair_style tlsph: particle 1 has 0 reference partners \(h = 0.0004, kernel support 2h = "
+     r"0.0008; particle spacing dx = 0.001 from its volume, h = 0.4 dx\): a corrected gradient "
+     r"needs at least 3 partners within 2h, not all in one plane \(9 for the quadratic"),
+    ("pd_h_below_spacing", pds("h 0.0004"), {},
+     r"pair_style tlsph: particle 1 has 0 reference partners \(h = 0.0004.*h must be larger than "
+     r"the particle spacing"),
+    ("ps_one_row", one_row(), {},
+     r"pair_style tlsph: particle 1 has 2 reference partners, all on one line \(h = 0.00133, "
+     r"kernel support 2h = 0.00266; nearest partner 0.001 away, h = 1.33 dx\).*7 of 7 particles "
+     r"have too few: h is not smaller than the spacing, but a body one particle thick has no "
+     r"gradient across it"),
+    ("ps_isolated", loner(PAIR), {},
+     r"pair_style tlsph: particle 36 has 0 reference partners .*1 of 36 particles have too few: "
+     r"h is not smaller than the spacing: the particle lies apart from the others .*'check_partners no'"),
+    # the override: the lone particle is meant; the run goes on, with a warning
+    ("ps_isolated_override", loner(f"pair_style tlsph {H} check_partners no\n"), {},
+     r"WARNING: pair_style tlsph: particle 36 has 0 reference partners .*they carry no stress of "
+     r"their own \(check_partners no\)"),
+    # ------------------------------------------------ volumes and masses against h and rho
+    ("pv_volume_default", pv(None, "7.8e-3"), {},
+     r"pair tlsph: particle 1 \(type 1\) has mass 0.0078 and volume 1: mass/volume = 0.0078, but "
+     r"its material has rho = 7800 \(100% off\): set the volume .*'set type 1 volume <dx\^2 in 2D.*"
+     r"'set type 1 mass <7800\*volume>'.*volume 1 is atom_style peri's default.*'check_volume no'"),
+    ("pv_volume_default_3d", pv(None, "7.8e-6", dim=3), {},
+     r"pair tlsph: particle 1 \(type 1\) has mass 7.8e-06 and volume 1: .*'set type 1 volume "
+     r"<dx\^3 in 3D>'"),
+    ("pv_mass_and_volume_default", pv(None, None), {},
+     r"pair tlsph: particle 1 \(type 1\) has mass 1 and volume 1: mass/volume = 1, but its "
+     r"material has rho = 7800"),
+    ("pv_mass_tenfold", pv("1e-6", "7.8e-2"), {},
+     r"pair tlsph: particle 1 \(type 1\) has mass 0.078 and volume 1e-06: mass/volume = 78000, "
+     r"but its material has rho = 7800 \(900% off\)"),
+    ("pv_mass_tenfold_override", pv("1e-6", "7.8e-2", pair=f"pair_style tlsph {H} check_volume no\n"), {},
+     r"WARNING: pair tlsph: mass/volume differs from rho: particle 1 \(type 1\) has mass 0.078"),
+    ("pv_mass_rounded", pv("1e-6", "7.81e-3"), {},
+     r"WARNING: pair tlsph: mass/volume differs from rho: .*\(0.128% off\)"),
+    # mass = rho*volume, but the volume in other units (mm^2 read as m^2)
+    ("pv_volume_units", pv("1e-3", "7.8"), {},
+     r"pair tlsph: the particle volumes do not match the kernel normalisation: sum_j V_j W_ij = "
+     r"1001 at particle \d+ \(volume 0.001, h = 0.00133\), about 1 expected \(0.5 to 2 "
+     r"accepted\) \(its nearest partner is 0.001 away: on a lattice of that spacing its volume "
+     r"would be 1e-06\).*'set type N volume <dx\^2 in 2D.*'check_volume no'"),
+    ("pv_volume_units_override", pv("1e-3", "7.8", pair=f"pair_style tlsph {H} check_volume no\n"), {},
+     r"WARNING: pair tlsph: the particle volumes do not match the kernel normalisation: sum_j V_j "
+     r"W_ij = 1001 "),
+    # 2D volumes that contain a 1 mm thickness, without the 'thickness' keyword
+    ("pv_thickness_missing", pv("1e-9", "7.8e-6"), {},
+     r"pair tlsph: the particle volumes do not match the kernel normalisation: sum_j V_j W_ij = "
+     r"0.001\d* .*dx\^2 t with pair_style ... thickness t \(t = 1 now\)"),
     # ------------------------------------------------ wrong atom style / set-up
     ("atom_style_atomic", HEAD[2].format(atom_style="atomic").split("set type")[0] + "mass * 7.8e-3\n"
      + PAIR + COEFF + TAIL, {}, r"pair tlsph requires atom_style peri"),

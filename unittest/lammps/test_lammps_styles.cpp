@@ -154,10 +154,21 @@ struct ForceCase {
   bool periodic_x = false;
 };
 
+// the density of the case's material (its 'rho' value): the masses are rho*volume
+double case_rho(const ForceCase &c)
+{
+  const size_t at = c.coeff.find("rho ");
+  return at == std::string::npos ? 7800.0 : std::stod(c.coeff.substr(at + 4));
+}
+
 std::string force_script(const ForceCase &c)
 {
   std::string s = "units si\n";
   s += c.newton ? "newton on\n" : "newton off\n";
+  char mass[100];
+  snprintf(mass, sizeof(mass), "variable mass equal %.17g\n",
+           case_rho(c) * (c.dim == 2 ? 1.0e-6 : 1.0e-9));
+  s += mass;
   if (c.dim == 2) {
     // open boundaries in x and y: corner and edge particles included
     s += c.periodic_x ? "dimension 2\nboundary p s p\n" : "dimension 2\nboundary s s p\n";
@@ -167,7 +178,7 @@ region box block 0 8 0 6 -0.5 0.5
 create_box 1 box
 create_atoms 1 box
 set type 1 volume 1e-6
-set type 1 mass 7.8e-3
+set type 1 mass ${mass}
 variable ux atom 2.0e-5*sin(x/1.3e-3+y/1.7e-3)+0.004*x+0.002*y
 variable uy atom 1.5e-5*cos(x/1.1e-3-y/1.9e-3)-0.003*y
 variable vx atom 4.0*sin(x/2.1e-3)*cos(y/1.6e-3)
@@ -185,7 +196,7 @@ region box block 0 6 0 4 0 3
 create_box 1 box
 create_atoms 1 box
 set type 1 volume 1e-9
-set type 1 mass 7.8e-6
+set type 1 mass ${mass}
 variable ux atom 2.0e-5*sin(2*PI*x/6e-3+y/1.7e-3)+0.002*y+0.001*z
 variable uy atom 1.5e-5*cos(2*PI*x/6e-3-z/1.9e-3)-0.003*y
 variable uz atom 1.0e-5*sin(y/1.2e-3+z/1.5e-3)*cos(2*PI*x/6e-3)+0.002*z
@@ -841,6 +852,102 @@ TEST(AtomMap, created_automatically)
 TEST(AtomMap, user_hash_map_kept)
 {
   check_map("atom_modify map hash\n");
+}
+
+/* ----------------------------------------------------------------------
+   the set-up checks and their overrides (doc/pair_tlsph.rst, "Set-up
+   checks"): the errors themselves stop LAMMPS (no exceptions in Debian's
+   build) and are tested by bad_input.py (ps_isolated, pv_volume_default,
+   ...); here: with the override the run goes on, and does what it says
+------------------------------------------------------------------------- */
+
+namespace {
+
+// a deformed 2D block; with 'loner' one more particle, 4 spacings away from it
+std::string check_deck(bool loner, const std::string &pair_extra)
+{
+  std::string s = R"(units si
+dimension 2
+boundary s s p
+atom_style peri
+atom_modify map array
+lattice sq 0.001
+region box block 0 12 0 4 -0.5 0.5
+create_box 1 box
+region body block 0 6 0 4 -0.5 0.5
+create_atoms 1 region body
+)";
+  if (loner) s += "create_atoms 1 single 10 2 0\n";
+  s += R"(set type 1 volume 1e-6
+set type 1 mass 7.8e-3
+variable ux atom 2.0e-5*sin(x/1.3e-3+y/1.7e-3)+0.004*x
+displace_atoms all move v_ux 0 0 units box
+)";
+  s += "pair_style tlsph h 0.00133 " + pair_extra + "\n";
+  s += R"(pair_coeff 1 1 E 210e9 nu 0.3 rho 7800
+compute F all tlsph/defgrad/atom
+fix 1 all nve
+run 0
+)";
+  return s;
+}
+
+}    // namespace
+
+// check_partners no: a particle without partners (on purpose) runs along,
+// with F = I and no force, and changes nothing for the others
+TEST(Checks, isolated_particle_with_check_partners_no)
+{
+  LAMMPS *a = open_lammps();
+  run_script(a, check_deck(true, "check_partners no"));
+  EXPECT_EQ(a->atom->natoms, 36);
+  const ById fa = per_atom(a, "f");
+  ASSERT_EQ(fa.count(36), 1u);
+  for (double x : fa.at(36)) EXPECT_EQ(x, 0.0) << "the lone particle feels a force";
+  FixTLSPHBonds *bonds = bond_fix(a);
+  ASSERT_NE(bonds, nullptr);
+  const int i36 = a->atom->map(36);
+  ASSERT_GE(i36, 0);
+  EXPECT_EQ(bonds->npartner[i36], 0);
+  // its deformation gradient is the identity (no correction, no stress)
+  auto c = a->modify->compute[a->modify->find_compute("F")];
+  c->compute_peratom();
+  for (int k = 0; k < 9; k++)
+    EXPECT_EQ(c->array_atom[i36][k], (k % 4 == 0) ? 1.0 : 0.0) << "F component " << k;
+  delete a;
+
+  // the block alone: the same forces, bitwise
+  LAMMPS *b = open_lammps();
+  run_script(b, check_deck(false, ""));
+  const ById fb = per_atom(b, "f");
+  delete b;
+  EXPECT_EQ(fb.size(), 35u);
+  EXPECT_GT(largest(fb), 0.0);
+  for (const auto &kv : fb) EXPECT_EQ(kv.second, fa.at(kv.first)) << "atom " << kv.first;
+}
+
+// the two overrides are pair settings: a restart file keeps them (without,
+// the run after read_restart would stop on atom_style peri's default volume)
+TEST(Checks, overrides_kept_in_restart)
+{
+  const std::string file = "tlsph_checks.rst";
+  LAMMPS *a = open_lammps();
+  std::string deck = check_deck(true, "check_partners no check_volume no");
+  deck.replace(deck.find("set type 1 volume 1e-6\n"), 23, "");
+  run_script(a, deck);
+  EXPECT_EQ(a->atom->vfrac[0], 1.0);
+  run_script(a, "write_restart " + file + "\n");
+  delete a;
+
+  LAMMPS *b = open_lammps();
+  // run 0: init_style (mass/volume) and the first bond cache (kernel
+  // normalisation) check again, with the settings from the file
+  run_script(b, "read_restart " + file + "\nfix 1 all nve\nrun 0\n");
+  EXPECT_EQ(b->atom->natoms, 36);
+  EXPECT_EQ(b->atom->vfrac[0], 1.0);
+  EXPECT_GT(largest(per_atom(b, "f")), 0.0);
+  delete b;
+  remove(file.c_str());
 }
 
 /* ---------------------------------------------------------------------- */

