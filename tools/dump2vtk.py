@@ -353,6 +353,18 @@ def _expect_number(r, conv, what):
         raise DumpError(f"{r.where()}: expected {what}, found {line.strip()!r}") from None
 
 
+def _frame_ends(r, line, item, step, what=""):
+    """True when the file ends where a frame's `item` line should be (the last
+    frame is incomplete: a note, and the caller stops); a DumpError when another
+    line stands there; False when the line is `item`"""
+    if line.startswith(item):
+        return False
+    if not line:
+        note(f"{r.where()}: the last frame (step {step}) is incomplete: skipped")
+        return True
+    raise DumpError(f"{r.where()}: expected '{item}'{what}, found {line.strip()[:60]!r}")
+
+
 def read_frames(paths, select):
     """yield the Frames of the dumps; select(index, step, time) -> parse this frame?
     (frames not selected are skipped without parsing their atom lines)"""
@@ -389,20 +401,12 @@ def read_frames(paths, select):
                 if line.startswith("ITEM: NUMBER OF ENTRIES"):
                     raise DumpError(f"{r.where()}: a 'dump local' file; dump2vtk converts "
                                     "per-atom dumps (dump custom, dump atom)")
-                if not line.startswith("ITEM: NUMBER OF ATOMS"):
-                    if not line:
-                        note(f"{r.where()}: the last frame (step {step}) is incomplete: skipped")
-                        break
-                    raise DumpError(f"{r.where()}: expected 'ITEM: NUMBER OF ATOMS', "
-                                    f"found {line.strip()[:60]!r}")
+                if _frame_ends(r, line, "ITEM: NUMBER OF ATOMS", step):
+                    break
                 natoms = _expect_number(r, int, "the number of atoms")
                 line = r.readline()
-                if not line.startswith("ITEM: BOX BOUNDS"):
-                    if not line:
-                        note(f"{r.where()}: the last frame (step {step}) is incomplete: skipped")
-                        break
-                    raise DumpError(f"{r.where()}: expected 'ITEM: BOX BOUNDS', "
-                                    f"found {line.strip()[:60]!r}")
+                if _frame_ends(r, line, "ITEM: BOX BOUNDS", step):
+                    break
                 triclinic = "xy" in line.split()
                 lo, hi, tilt = np.zeros(3), np.zeros(3), [0.0, 0.0, 0.0]
                 blines = [r.readline() for _ in range(3)]
@@ -419,12 +423,8 @@ def read_frames(paths, select):
                         raise DumpError(f"{r.path}:{r.lineno - 2 + d}: expected box bounds, "
                                         f"found {bl.strip()!r}") from None
                 head = r.readline()
-                if not head.startswith("ITEM: ATOMS"):
-                    if not head:
-                        note(f"{r.where()}: the last frame (step {step}) is incomplete: skipped")
-                        break
-                    raise DumpError(f"{r.where()}: expected 'ITEM: ATOMS' and the column "
-                                    f"names, found {head.strip()[:60]!r}")
+                if _frame_ends(r, head, "ITEM: ATOMS", step, " and the column names"):
+                    break
                 names = head.split()[2:]
                 if not names:
                     raise DumpError(f"{r.where()}: 'ITEM: ATOMS' names no columns")

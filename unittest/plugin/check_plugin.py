@@ -63,22 +63,30 @@ def run(cmd, what):
     return out
 
 
-def thermo(out, what):
-    """Rows of the (last) thermo table: list of lists of floats, plus the header."""
+def last_thermo(out, what, steps, tables=1):
+    """header and rows (floats) of the last thermo table of a run's output; fails
+    unless the output has at least `tables` tables and the last reaches `steps`"""
     lines = out.splitlines()
     starts = [i for i, l in enumerate(lines) if l.split()[:1] == ["Step"]]
-    if not starts:
+    if len(starts) < tables:
         print(out)
-        fail(what + ": no thermo output")
+        fail(what + (": no thermo output" if tables == 1 else
+                     ": fewer than {} thermo tables ({} runs expected)".format(tables, tables)))
     header = lines[starts[-1]].split()
     rows = []
     for l in lines[starts[-1] + 1:]:
         if l.startswith("Loop time"):
             break
         rows.append([float(v) for v in l.split()])
-    if not rows or int(rows[-1][0]) != STEPS:
+    if not rows or int(rows[-1][0]) != steps:
         print(out)
-        fail("{}: thermo does not reach step {}".format(what, STEPS))
+        fail("{}: thermo does not reach step {}".format(what, steps))
+    return header, rows
+
+
+def thermo(out, what):
+    """Rows of the (last) thermo table: list of lists of floats, plus the header."""
+    header, rows = last_thermo(out, what, STEPS)
     if not any(abs(v) > 0.0 for r in rows[1:] for v in r[2:3]):
         fail(what + ": potential energy stays zero, pair tlsph did nothing")
     print("{}: {}".format(what, "  ".join("{} {:.15g}".format(h, v) for h, v in zip(header, rows[-1]))))
@@ -134,21 +142,7 @@ CR_STEPS = 300
 
 def cr_thermo(out, what):
     """every thermo row of the second run (steps 150..300) of in.clear-restart"""
-    lines = out.splitlines()
-    starts = [i for i, l in enumerate(lines) if l.split()[:1] == ["Step"]]
-    if len(starts) < 2:
-        print(out)
-        fail(what + ": fewer than two thermo tables (two runs expected)")
-    header = lines[starts[-1]].split()
-    rows = []
-    for l in lines[starts[-1] + 1:]:
-        if l.startswith("Loop time"):
-            break
-        rows.append([float(v) for v in l.split()])
-    if not rows or int(rows[-1][0]) != CR_STEPS:
-        print(out)
-        fail("{}: thermo does not reach step {}".format(what, CR_STEPS))
-    return header, rows
+    return last_thermo(out, what, CR_STEPS, tables=2)
 
 
 def python_run(builddir, code, what):
