@@ -14,6 +14,9 @@ import os
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples"))
+from checks import verdict  # noqa: E402  (unittest/examples/checks.py)
+
 
 def kalthoff(angle, speed=1700.0, diff=0.0):
     c = dict(angle_deg=angle, initiation_time=15e-6, speed_max=speed,
@@ -83,12 +86,7 @@ def main():
         ("plots written", os.path.exists(os.path.join(a.workdir, "report.png"))
          and os.path.exists(os.path.join(a.workdir, "report-kept.png"))),
     ]
-    ok = True
-    for name, good_ in checks:
-        print(("ok    " if good_ else "FAIL  ") + name)
-        ok &= bool(good_)
-    print("PASSED" if ok else "FAILED")
-    return 0 if ok else 1
+    return verdict(checks)
 
 
 if __name__ == "__main__":

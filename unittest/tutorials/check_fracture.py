@@ -38,7 +38,6 @@ impact (in.plate-impact: steel plate, 20 m/s below the notch)
 Prints PASSED or FAILED (ctest matches PASSED) and exits 0 / 1.
 """
 
-import argparse
 import json
 import math
 import os
@@ -46,7 +45,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorial import fresh_dir, material, mpi_cmd, run, verdict, wave_speed  # noqa: E402
+from tutorial import arg_parser, fresh_dir, material, mpi_cmd, run, verdict, wave_speed  # noqa: E402
 
 NUM = r"([-+0-9.eE]+)"
 
@@ -69,15 +68,9 @@ def log_tips(path):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--mpiexec", required=True)
-    ap.add_argument("--np", type=int, default=2)
-    ap.add_argument("--lmp", required=True)
-    ap.add_argument("--example", required=True, help="examples/tutorial-fracture")
+    ap = arg_parser("examples/tutorial-fracture")
     ap.add_argument("--tools", required=True, help="tools/ (crack_measure.py)")
-    ap.add_argument("--workdir", required=True)
     ap.add_argument("--case", required=True, choices=["tension", "tension-held", "impact"])
-    ap.add_argument("--python", default=sys.executable)
     a = ap.parse_args()
     wd = fresh_dir(a.workdir)
     lmp = os.path.abspath(a.lmp)

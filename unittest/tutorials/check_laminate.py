@@ -27,23 +27,16 @@ brackets):
 Prints PASSED or FAILED (ctest matches PASSED) and exits 0 / 1.
 """
 
-import argparse
 import json
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorial import fresh_dir, mpi_cmd, run, verdict  # noqa: E402
+from tutorial import arg_parser, fresh_dir, mpi_cmd, run, verdict  # noqa: E402
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--mpiexec", required=True)
-    ap.add_argument("--np", type=int, default=2)
-    ap.add_argument("--lmp", required=True)
-    ap.add_argument("--example", required=True, help="examples/tutorial-laminate")
-    ap.add_argument("--workdir", required=True)
-    ap.add_argument("--python", default=sys.executable)
+    ap = arg_parser("examples/tutorial-laminate")
     a = ap.parse_args()
     wd = fresh_dir(a.workdir)
     ex = os.path.abspath(a.example)

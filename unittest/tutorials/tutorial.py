@@ -3,6 +3,7 @@ its page in doc/ shows it (mpirun -np 2 lmp_tlsph -in DECK, in an empty
 working directory), reading the package's material file, and the verdict
 (unittest/examples/checks.py: one line per check, then PASSED or FAILED)."""
 
+import argparse
 import math
 import os
 import re
@@ -13,6 +14,19 @@ import sys
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "examples"))
 from checks import verdict  # noqa: E402,F401
+
+
+def arg_parser(example):
+    """the command line every tutorial check takes: --mpiexec --np --lmp
+    --example (the tutorial's folder, `example`) --workdir --python"""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--mpiexec", required=True)
+    ap.add_argument("--np", type=int, default=2)
+    ap.add_argument("--lmp", required=True)
+    ap.add_argument("--example", required=True, help=example)
+    ap.add_argument("--workdir", required=True)
+    ap.add_argument("--python", default=sys.executable)
+    return ap
 
 
 def mpi_cmd(mpiexec, np):
