@@ -16,8 +16,9 @@
 #
 # `build-lammps-plugin.sh bench` builds the side-by-side benchmark's LAMMPS
 # instead (bench/compare.sh): the same, plus the MACHDYN package (smd/tlsph,
-# with Debian's Eigen), in lammps-bench-<source version>/ (library
-# liblammps_bench.so.0). MACHDYN's pair_smd_tlsph.cpp of this version calls
+# with Debian's Eigen), in lammps-bench-<source version>-O3--DNDEBUG/
+# (library liblammps_bench.so.0), compiled with the plugin's own flags (see
+# RELEASE_FLAGS below). MACHDYN's pair_smd_tlsph.cpp of this version calls
 # domain->minimum_image(dx0) before dx0 is assigned (in its reference-distance
 # loop; BENCH_PATCH below): with a periodic
 # dimension -- z in every 2D run -- it then reduces an uninitialised vector,
@@ -151,8 +152,29 @@ SRC_VER=$(dpkg-query -W -f='${source:Version}' liblammps-dev)
 CACHE=${TLSPH_CACHE:-${XDG_CACHE_HOME:-${HOME:-/root}/.cache}/tlsph}
 mkdir -p "$CACHE"
 CACHE=$(cd "$CACHE" && pwd -P)
+# Optimisation flags of the LAMMPS build (CMAKE_CXX_FLAGS_RELEASE). bench
+# takes the plugin's own (the set(CMAKE_CXX_FLAGS_RELEASE ...) line of this
+# project's CMakeLists.txt), so that both sides of bench/compare.sh are
+# compiled alike, and its cache folder is keyed by them
+# (lammps-bench-<version>-O3--DNDEBUG: each space a dash); the others keep
+# -O2 -DNDEBUG. Every
+# call reads the flags back from the build's CMakeCache.txt and refuses a
+# build made with other flags, so an old build is never silently reused.
+PLUGIN_FLAGS=$(sed -n 's/^set(CMAKE_CXX_FLAGS_RELEASE "\(.*\)")$/\1/p' "$HERE/../CMakeLists.txt")
+[ -n "$PLUGIN_FLAGS" ] || die "cannot read CMAKE_CXX_FLAGS_RELEASE from $HERE/../CMakeLists.txt"
+case "$VARIANT" in
+  bench) RELEASE_FLAGS=$PLUGIN_FLAGS ;;
+  *)     RELEASE_FLAGS="-O2 -DNDEBUG" ;;
+esac
 PREFIX="$CACHE/lammps-$VARIANT-$SRC_VER"
+[ "$VARIANT" = bench ] && PREFIX="$PREFIX$(printf '%s' "$RELEASE_FLAGS" | tr -s ' ' | tr ' ' '-' | tr -cd 'A-Za-z0-9=_.-' | sed 's/^-*/-/')"
 LMP="$PREFIX/bin/lmp"
+# flags_of BUILD: CMAKE_CXX_FLAGS_RELEASE as the build's CMakeCache.txt holds it
+flags_of() { sed -n 's/^CMAKE_CXX_FLAGS_RELEASE:[A-Z]*=//p' "$1/CMakeCache.txt" 2>/dev/null; }
+if [ -x "$LMP" ] && [ -f "$PREFIX/build/CMakeCache.txt" ] &&
+   [ "$(flags_of "$PREFIX/build")" != "$RELEASE_FLAGS" ]; then
+  die "$PREFIX was built with CMAKE_CXX_FLAGS_RELEASE='$(flags_of "$PREFIX/build")', this variant wants '$RELEASE_FLAGS': remove $PREFIX to rebuild"
+fi
 
 # kokkos-cuda: a build (or a partial one) is never continued with another nvcc
 if [ "$VARIANT" = kokkos-cuda ] && [ -f "$PREFIX/nvcc-version.txt" ] &&
@@ -514,7 +536,7 @@ SYNC_KOKKOS
   # EXTRA_PKGS come last: a variant's settings override these defaults.
   cmake -S "$SRC_TREE/cmake" -B "$BUILD" -G Ninja \
     -D CMAKE_BUILD_TYPE=Release \
-    -D CMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
+    -D CMAKE_CXX_FLAGS_RELEASE="$RELEASE_FLAGS" \
     -D BUILD_MPI=on -D BUILD_OMP=off -D BUILD_SHARED_LIBS=on \
     -D LAMMPS_MACHINE=$MACHINE -D LAMMPS_SIZES=smallbig -D LAMMPS_EXCEPTIONS=off \
     -D PKG_PLUGIN=on -D PKG_PERI=on \
