@@ -52,7 +52,9 @@ FixTLSPHBonds::FixTLSPHBonds(LAMMPS *lmp, int narg, char **arg) :
   // it. Every step (end_of_step) this fix reads only v and changes no atom
   // data; the partner search syncs what it needs itself (find_partners).
   // The default, ALL_MASK both, would move every atom array to the host and
-  // back each step (a no-op with the host backends, not on a GPU).
+  // back each step (a no-op with the host backends, not on a GPU). With a
+  // /kk pair style init() makes this a Kokkos fix on the device that reads
+  // nothing on the host (see there).
   datamask_read = V_MASK | MASK_MASK;
   datamask_modify = EMPTY_MASK;
 
@@ -86,11 +88,29 @@ FixTLSPHBonds::~FixTLSPHBonds()
 
 int FixTLSPHBonds::setmask()
 {
-  return POST_NEIGHBOR | MIN_POST_NEIGHBOR | END_OF_STEP;
+  return POST_NEIGHBOR | MIN_POST_NEIGHBOR | END_OF_STEP | POST_RUN;
 }
 
 void FixTLSPHBonds::init()
 {
+  // With a /kk pair style the per-step work tally runs on the device
+  // (PairTLSPHKokkosT::tally_work_device), so this fix declares itself a
+  // Kokkos fix on the device that reads and changes no atom data on the
+  // host: LAMMPS (ModifyKokkos) then copies nothing before or after its
+  // hooks, and does not switch on auto_sync for them, which would mark v as
+  // changed on the host and copy it back to the device every step. Its
+  // host code syncs what it reads itself (sync_host_v, find_partners).
+  if (owner && owner->on_device()) {
+    kokkosable = 1;
+    execution_space = Device;
+    datamask_read = EMPTY_MASK;
+    datamask_modify = EMPTY_MASK;
+  } else {
+    kokkosable = 0;
+    execution_space = Host;
+    datamask_read = V_MASK | MASK_MASK;
+    datamask_modify = EMPTY_MASK;
+  }
   if (!first) return;
   // an occasional full list, used once to find the reference partners
   int irequest = neighbor->request(this, instance_me);
@@ -151,9 +171,29 @@ void FixTLSPHBonds::end_of_step()
   tallied_step = update->ntimestep;
 }
 
+// the /kk styles: what was copied between host and device in this run
+void FixTLSPHBonds::post_run()
+{
+  if (owner) owner->report_copies(update->nsteps);
+}
+
+// v current on the host, for the host code of a Kokkos run (init()); a /kk
+// pair style counts it (tlsph_kk_copies.h)
+void FixTLSPHBonds::sync_host_v() const
+{
+  if (owner && owner->kokkosable) {
+    owner->host_sync(V_MASK);
+    return;
+  }
+#ifdef LMP_KOKKOS
+  if (lmp->kokkos) ((AtomKokkos *) atom)->sync(Host, V_MASK);
+#endif
+}
+
 void FixTLSPHBonds::work_now(int i, double &hg, double &visc) const
 {
   host_arrays();
+  sync_host_v();
   // during a step the force of this step has given one half kick; the
   // tallies hold two of it once end_of_step() has run, none before. A setup
   // force has given none: the tallies hold one of it (the first run, after
@@ -177,6 +217,7 @@ void FixTLSPHBonds::tally_work(double dt)
 {
   if (owner && owner->tally_work_device(dt)) return;
   host_arrays();
+  sync_host_v();
   double **v = atom->v;
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++) {

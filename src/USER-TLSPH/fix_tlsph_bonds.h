@@ -39,6 +39,7 @@ class FixTLSPHBonds : public Fix {
   void min_post_neighbor() override;
   void setup(int) override;
   void end_of_step() override;
+  void post_run() override;
 
   double memory_usage() override;
   void grow_arrays(int) override;
@@ -86,6 +87,7 @@ class FixTLSPHBonds : public Fix {
  private:
   // the work and force arrays current on the host (a /kk pair may hold them on the device)
   void host_arrays() const;
+  void sync_host_v() const;
   int first;             // 1 until the partners have been found
   int precounted;        // 1 once the work tallies include the next half kick
   bigint tallied_step;   // step of the last tally (end_of_step or setup)

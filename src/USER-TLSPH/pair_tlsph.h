@@ -81,6 +81,16 @@ class PairTLSPH : public Pair {
   // calls work_to_host() before it touches its work or force arrays
   virtual bool tally_work_device(double) { return false; }
   virtual void work_to_host() {}
+  // /kk styles: the host<->device copies of the run just ended (its nsteps
+  // steps) into the log, then the counts cleared (called by the bond fix)
+  virtual void report_copies(bigint) {}
+  // /kk styles: true when the step's arrays live on the device (the bond
+  // fix then runs as a Kokkos fix with no per-step host copies)
+  virtual bool on_device() const { return false; }
+  // /kk styles: the atom data of mask current on the host for host code
+  // (counted, tlsph_kk_copies.h); host_modified: host code changed it
+  virtual void host_sync(unsigned int) {}
+  virtual void host_modified(unsigned int) {}
 
   class FixTLSPHBonds *bonds;
 

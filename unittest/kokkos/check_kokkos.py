@@ -27,6 +27,19 @@ not a silent fall-back to the CPU style.
                    written by the CPU styles is read by /kk; each continued run equals
                    the CPU-written, CPU-read one to TOL (the /kk step is bitwise the
                    CPU newton-off step, used here as the CPU reference).
+  --case transfers in.transfers with the settings of a GPU run (-pk kokkos comm
+                   device newton off neigh full): an ordinary step of tlsph/kk,
+                   and of tlsph/damage/kk with the velocity filter and the
+                   time-step fix, copies no per-atom array and none of the
+                   styles' own arrays between host and device (the 'tlsph/kk
+                   copies' report the bond fix logs after each run; two runs of
+                   different length, their difference per step must be zero).
+                   A GPU build counts the real copies; on a host backend the
+                   device model (TLSPH_KK_DEVICE_MODEL=1) runs the GPU's paths
+                   on one memory and counts what they would copy, on 1 rank and
+                   on 2 (GPU-aware MPI), with thermo output equal to the plain
+                   host backend's. A fix without a Kokkos variant must be
+                   reported (negative control).
   --case plugin    (with --plugin) `plugin list` after `plugin load` of the /kk
                    plugin: every style of the CPU plugin (--cpu-plugin, loaded
                    alone in another run) and the /kk pair and fix styles.
@@ -60,7 +73,7 @@ DAMAGE_XTOL = 1e-8
 KK = ["-k", "on", "-sf", "kk", "-var", "kk", "/kk"]
 
 
-def lmp_run(args, tag, inp, extra, kk, np=1):
+def lmp_run(args, tag, inp, extra, kk, np=1, env_extra=None):
     cmd = []
     if np > 1:
         cmd = [args.mpiexec, "--oversubscribe"]
@@ -75,6 +88,7 @@ def lmp_run(args, tag, inp, extra, kk, np=1):
     env = dict(os.environ, OMP_NUM_THREADS=str(args.threads), OMP_PROC_BIND="false")
     if args.plugin:
         env["TLSPH_KK_PLUGIN_TRACE"] = "1"
+    env.update(env_extra or {})
     p = subprocess.run(cmd, cwd=args.workdir, capture_output=True, text=True,
                        timeout=args.timeout, env=env)
     log = open(os.path.join(args.workdir, tag + ".log")).read() \
@@ -406,12 +420,140 @@ def case_damage(args):
     return problems
 
 
+def copy_blocks(log):
+    """the 'tlsph/kk copies' report of each run in a log: [(nsteps, where, {name: (to device,
+    to host, MB)})], where = 'device', 'model' or 'host'"""
+    runs = []
+    for line in log.splitlines():
+        m = re.match(r"^tlsph/kk copies: run of (\d+) steps on (the device model|the device|"
+                     r"a host backend)", line)
+        if m:
+            where = {"the device": "device", "the device model": "model",
+                     "a host backend": "host"}[m.group(2)]
+            runs.append((int(m.group(1)), where, {}))
+            continue
+        m = re.match(r"^tlsph/kk copies: (\S+) (\S+) (\d+) (\d+) (\S+)$", line)
+        if m and runs:
+            runs[-1][2][m.group(1) + " " + m.group(2)] = (int(m.group(3)), int(m.group(4)),
+                                                          float(m.group(5)))
+    return runs
+
+
+def per_step_copies(runs, n1, n2):
+    """{name: (to device, to host, MB)} per ordinary step: the difference of the
+    two timed runs (same set-up and output, n1 and n2 steps) over n2 - n1"""
+    (_, _, a), (_, _, b) = runs[1], runs[2]
+    out = {}
+    for name in sorted(set(a) | set(b)):
+        ca, cb = a.get(name, (0, 0, 0.0)), b.get(name, (0, 0, 0.0))
+        out[name] = tuple((cb[k] - ca[k]) / float(n2 - n1) for k in range(3))
+    return out
+
+
+def transfer_run(args, tag, style, n1, n2, np, model, extra=()):
+    """in.transfers: the copy reports of its three runs, their last thermo row
+    and the problems found"""
+    inp = os.path.join(HERE, "in.transfers")
+    flags = ["-pk", "kokkos", "comm", "device", "newton", "off", "neigh", "full"]
+    if np > 1:
+        # one memory: MPI reads device buffers as it reads host ones (GPU-aware)
+        flags += ["gpu/aware", "on"]
+    env = {"TLSPH_KK_DEVICE_MODEL": "1"} if model else {"TLSPH_KK_DEVICE_MODEL": "0"}
+    out, p = lmp_run(args, tag, inp, flags + ["-var", "style", style, "-var", "n1", str(n1),
+                                              "-var", "n2", str(n2)] + list(extra),
+                     True, np=np, env_extra=env)
+    problems = ["%s: %s" % (tag, q) for q in p]
+    runs = copy_blocks(out)
+    if len(runs) != 3 or [r[0] for r in runs] != [5, n1, n2]:
+        problems.append("%s: expected the copy reports of 3 runs (5, %d, %d steps), found %s"
+                        % (tag, n1, n2, [r[0] for r in runs]))
+        return None, None, problems
+    builds = re.findall(r"^Neighbor list builds = (\d+)$", out, re.M)
+    if len(builds) != 3 or builds[1:] != ["0", "0"]:
+        problems.append("%s: the two timed runs must build no neighbor list (found %s)"
+                        % (tag, builds))
+    rows = thermo_rows(out)
+    return runs, (rows[-1] if rows else None), problems
+
+
+def case_transfers(args):
+    """an ordinary step of tlsph/kk and tlsph/damage/kk (with nve/kk, the
+    velocity filter and the time-step fix) copies no per-atom array and none
+    of the styles' own arrays between host and device. On a GPU build the
+    atom style's ledger of the DualView protocol counts the copies; on a host
+    backend the device model (TLSPH_KK_DEVICE_MODEL=1, tlsph_kk_copies.h)
+    runs the GPU's paths on one memory and counts what they would copy: the
+    styles' own uploads and downloads, the host accesses of their host code,
+    fixes LAMMPS runs on the host, communication through the host. 1 rank (a
+    GPU bundle's configuration) and 2 ranks (GPU-aware MPI). The model's
+    thermo output must equal the plain host backend's (only the paths
+    differ). A negative control: a fix without a Kokkos variant (addforce)
+    must be reported as copying every step."""
+    problems = []
+    n1, n2 = 10, 30
+    for style in ("tlsph", "damage"):
+        plain, plain_row, p = transfer_run(args, "transfers_%s_host" % style, style, n1, n2, 1,
+                                           False)
+        problems += p
+        if plain and any(r[1] != "host" for r in plain):
+            problems.append("%s: the plain host backend reports %s, not 'a host backend'"
+                            % (style, [r[1] for r in plain]))
+        for np in (1, 2):
+            tag = "transfers_%s_np%d" % (style, np)
+            runs, row, p = transfer_run(args, tag, style, n1, n2, np, True)
+            problems += p
+            if not runs:
+                continue
+            kinds = set(r[1] for r in runs)
+            if kinds not in ({"model"}, {"device"}):
+                problems.append("%s: the runs report %s, expected the device model (or a GPU)"
+                                % (tag, sorted(kinds)))
+                continue
+            # the set-up must have counted something (the bond cache goes to
+            # the device): else the ledger is not counting at all
+            if not runs[0][2]:
+                problems.append("%s: the warm-up run reports no copies: the ledger counts "
+                                "nothing" % tag)
+            if np == 1 and row != plain_row:
+                problems.append("%s: last thermo row %s differs from the plain host backend's %s"
+                                % (tag, row, plain_row))
+            per = per_step_copies(runs, n1, n2)
+            print("%s (%s): copies per ordinary step (runs of %d and %d steps):"
+                  % (tag, sorted(kinds)[0], n1, n2))
+            clean = True
+            for name, c in per.items():
+                bad = c[0] != 0 or c[1] != 0
+                print("  %-40s to device %6.2f  to host %6.2f  %8.4f MB  %s"
+                      % (name, c[0], c[1], c[2], "FAIL" if bad else "ok"))
+                if bad:
+                    clean = False
+                    problems.append("%s: an ordinary step copies %s (%.2f to the device, %.2f "
+                                    "to the host per step)" % (tag, name, c[0], c[1]))
+            if clean:
+                print("  nothing: every copy is in the set-up and the thermo output")
+    # the negative control: the check must see a fix that runs on the host
+    runs, _, p = transfer_run(args, "transfers_control", "tlsph", n1, n2, 1, True,
+                              ["-var", "extra", "addforce"])
+    problems += p
+    if runs:
+        per = per_step_copies(runs, n1, n2)
+        seen = [n for n, c in per.items() if n.startswith("host-fix extra/addforce")
+                and c[1] >= 1]
+        print("control (fix addforce, no Kokkos variant): %s" %
+              ("reported: " + ", ".join("%s %s" % (n, per[n][:2]) for n in seen) if seen
+               else "NOT reported"))
+        if not seen:
+            problems.append("control: a fix without a Kokkos variant (addforce) that runs every "
+                            "step was not reported as copying")
+    return problems
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--lmp", required=True, help="the KOKKOS-enabled lmp (build-lammps-plugin.sh kokkos)")
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--workdir", required=True)
-    ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart", "damage", "plugin"])
+    ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart", "damage", "plugin", "transfers"])
     ap.add_argument("--plugin", help="tlsphkkplugin.so: every run loads it first (see above)")
     ap.add_argument("--cpu-plugin", help="--case plugin: tlsphplugin.so, whose styles the "
                     "kk plugin must register too")
@@ -430,7 +572,8 @@ def main():
         if getattr(args, a):
             setattr(args, a, os.path.abspath(getattr(args, a)))
     problems = {"forces": case_forces, "mpi": case_mpi, "restart": case_restart,
-                "damage": case_damage, "plugin": case_plugin}[args.case](args)
+                "damage": case_damage, "plugin": case_plugin,
+                "transfers": case_transfers}[args.case](args)
     if problems:
         print("FAILED:\n  " + "\n  ".join(problems))
         return 1

@@ -626,6 +626,8 @@ AtomVecPeriKokkos::AtomVecPeriKokkos(LAMMPS *lmp) : AtomVecKokkos(lmp)
   size_data_atom = 7;     // id type vfrac rmass x y z
   size_data_vel = 4;
   xcol_data = 5;
+  for (int k = 0; k < NFIELD; k++) ledger.newer[k] = 0;
+  ledger_clear_counts();
 
   atom->rmass_flag = 1;
   atom->peri_flag = 1;
@@ -1869,16 +1871,101 @@ double AtomVecPeriKokkos::memory_usage()
    extended masks (with EXTENDED_MASK): VFRAC S0 X0
    ====================================================================== */
 
-void AtomVecPeriKokkos::sync(ExecutionSpace space, unsigned int mask)
+/* the copy ledger (header): fields in the order of the masks below */
+
+const char *AtomVecPeriKokkos::field_name(int k)
+{
+  static const char *names[NFIELD] = {"x", "v", "f", "tag", "type", "mask", "image", "rmass",
+                                      "vfrac", "s0", "x0"};
+  return (k >= 0 && k < NFIELD) ? names[k] : "?";
+}
+
+void AtomVecPeriKokkos::ledger_clear_counts()
+{
+  for (int k = 0; k < NFIELD; k++)
+    for (int d = 0; d < 2; d++) ledger.copies[k][d] = 0, ledger.bytes[k][d] = 0.0;
+}
+
+// bytes a copy of field k moves: the whole allocation, as DualView copies it
+double AtomVecPeriKokkos::field_bytes(int k) const
+{
+  switch (k) {
+    case 0: return sizeof(X_FLOAT) * atomKK->k_x.d_view.span();
+    case 1: return sizeof(V_FLOAT) * atomKK->k_v.d_view.span();
+    case 2: return sizeof(F_FLOAT) * atomKK->k_f.d_view.span();
+    case 3: return sizeof(tagint) * atomKK->k_tag.d_view.span();
+    case 4: return sizeof(int) * atomKK->k_type.d_view.span();
+    case 5: return sizeof(int) * atomKK->k_mask.d_view.span();
+    case 6: return sizeof(imageint) * atomKK->k_image.d_view.span();
+    case 7: return sizeof(double) * atomKK->k_rmass.d_view.span();
+    case 8: return sizeof(double) * k_vfrac.d_view.span();
+    case 9: return sizeof(double) * k_s0.d_view.span();
+    case 10: return sizeof(X_FLOAT) * k_x0.d_view.span();
+  }
+  return 0.0;
+}
+
+std::string AtomVecPeriKokkos::mask_fields(unsigned int mask, bool modify, double *bytes) const
 {
   unsigned int std_mask, ext_mask;
+  split_mask(mask, modify, std_mask, ext_mask);
+  std::string out;
+  *bytes = 0.0;
+  for (int k = 0; k < NFIELD; k++)
+    if (((k < 8) ? std_mask : ext_mask) & field_bit(k)) {
+      out += (out.empty() ? "" : ",") + std::string(field_name(k));
+      *bytes += field_bytes(k);
+    }
+  return out;
+}
+
+unsigned int AtomVecPeriKokkos::field_bit(int k)
+{
+  static const unsigned int bits[NFIELD] = {X_MASK,    V_MASK,     F_MASK,     TAG_MASK,
+                                            TYPE_MASK, MASK_MASK,  IMAGE_MASK, RMASS_MASK,
+                                            VFRAC_MASK, S0_MASK,   X0_MASK};
+  return (k >= 0 && k < NFIELD) ? bits[k] : 0u;
+}
+
+// the standard and the extended fields of a mask, as sync() (modify false)
+// and modified() (true) read it (see the header)
+void AtomVecPeriKokkos::split_mask(unsigned int mask, bool modify, unsigned int &std_mask,
+                                   unsigned int &ext_mask)
+{
   if (is_all_mask(mask)) {
     std_mask = mask; ext_mask = PERI_EXT;
   } else if (mask & EXTENDED_MASK) {
     std_mask = 0; ext_mask = mask;
   } else {
-    std_mask = mask; ext_mask = mask;     // see the header: a sync never hurts
+    std_mask = mask; ext_mask = modify ? 0 : mask;
   }
+}
+
+/* a sync (sync = true) or a modification of the fields in std_mask (X V F
+   TAG TYPE MASK IMAGE RMASS) and ext_mask (VFRAC S0 X0) */
+void AtomVecPeriKokkos::ledger_note(ExecutionSpace space, unsigned int std_mask,
+                                    unsigned int ext_mask, bool sync)
+{
+  const int side = (space == Device) ? 2 : 1;
+  for (int k = 0; k < NFIELD; k++) {
+    const unsigned int m = (k < 8) ? std_mask : ext_mask;
+    if (!(m & field_bit(k))) continue;
+    if (!sync) {
+      ledger.newer[k] = side;
+    } else if (ledger.newer[k] != 0 && ledger.newer[k] != side) {
+      const int d = (space == Device) ? 0 : 1;
+      ledger.copies[k][d]++;
+      ledger.bytes[k][d] += field_bytes(k);
+      ledger.newer[k] = 0;
+    }
+  }
+}
+
+void AtomVecPeriKokkos::sync(ExecutionSpace space, unsigned int mask)
+{
+  unsigned int std_mask, ext_mask;
+  split_mask(mask, false, std_mask, ext_mask);    // see the header: a sync never hurts
+  ledger_note(space, std_mask, ext_mask, true);
 
   if (space == Device) {
     if (std_mask & X_MASK) atomKK->k_x.sync<LMPDeviceType>();
@@ -1912,13 +1999,8 @@ void AtomVecPeriKokkos::sync(ExecutionSpace space, unsigned int mask)
 void AtomVecPeriKokkos::sync_overlapping_device(ExecutionSpace space, unsigned int mask)
 {
   unsigned int std_mask, ext_mask;
-  if (is_all_mask(mask)) {
-    std_mask = mask; ext_mask = PERI_EXT;
-  } else if (mask & EXTENDED_MASK) {
-    std_mask = 0; ext_mask = mask;
-  } else {
-    std_mask = mask; ext_mask = mask;
-  }
+  split_mask(mask, false, std_mask, ext_mask);
+  ledger_note(space, std_mask, ext_mask, true);
 
   if (space == Device) {
     if ((std_mask & X_MASK) && atomKK->k_x.need_sync<LMPDeviceType>())
@@ -1974,13 +2056,8 @@ void AtomVecPeriKokkos::sync_overlapping_device(ExecutionSpace space, unsigned i
 void AtomVecPeriKokkos::modified(ExecutionSpace space, unsigned int mask)
 {
   unsigned int std_mask, ext_mask;
-  if (is_all_mask(mask)) {
-    std_mask = mask; ext_mask = PERI_EXT;
-  } else if (mask & EXTENDED_MASK) {
-    std_mask = 0; ext_mask = mask;
-  } else {
-    std_mask = mask; ext_mask = 0;
-  }
+  split_mask(mask, true, std_mask, ext_mask);
+  ledger_note(space, std_mask, ext_mask, false);
 
   if (space == Device) {
     if (std_mask & X_MASK) atomKK->k_x.modify<LMPDeviceType>();

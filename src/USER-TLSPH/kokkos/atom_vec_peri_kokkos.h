@@ -53,6 +53,8 @@ AtomStyle(peri/kk/host,AtomVecPeriKokkos);
 #include "atom_vec_kokkos.h"
 #include "kokkos_type.h"
 
+#include <string>
+
 namespace LAMMPS_NS {
 
 class AtomVecPeriKokkos : public AtomVecKokkos {
@@ -147,6 +149,29 @@ class AtomVecPeriKokkos : public AtomVecKokkos {
   DAT::tdual_float_1d k_vfrac, k_s0;
   DAT::tdual_x_array k_x0;
 
+  // Copy ledger (doc/kokkos-cuda.md, "Host-device copies"): the copies
+  // between host and device memory that the calls of sync(),
+  // sync_overlapping_device() and modified() above make, per field, counted
+  // with DualView's own rule (a sync to one side copies the field when the
+  // other side marked it modified last). On a GPU these are the copies made.
+  // On the host backends both sides are one memory (DualView copies
+  // nothing), and LAMMPS's own calls name that one space now Host
+  // (ExecutionSpaceFromDevice), now Device: the counts mean nothing there,
+  // and the report says so instead (PairTLSPHKokkosT::report_copies).
+  // Copies LAMMPS makes by calling a DualView directly (not through
+  // AtomKokkos::sync) are not seen.
+  enum { NFIELD = 11 };
+  struct CopyLedger {
+    int newer[NFIELD];           // 0: both sides equal, 1: host newer, 2: device newer
+    long copies[NFIELD][2];      // [field][0: to the device, 1: to the host]
+    double bytes[NFIELD][2];
+  } ledger;
+  static const char *field_name(int);
+  // the fields a mask of sync() or modified() names, with their bytes now
+  // ("x,tag"; modify: as modified() reads the mask)
+  std::string mask_fields(unsigned int mask, bool modify, double *bytes) const;
+  void ledger_clear_counts();
+
   // sizes of the packed records (values per atom)
 
   enum { COMM_SIZE = 4,          // x[3] s0
@@ -198,6 +223,11 @@ class AtomVecPeriKokkos : public AtomVecKokkos {
                                                     const DAT::tdual_xfloat_2d &, int);
   void unpack_border_common(int, int, double *, int);
   int pack_border_common(int, int *, double *, int, int *, int);
+  void ledger_note(ExecutionSpace space, unsigned int std_mask, unsigned int ext_mask, bool sync);
+  double field_bytes(int) const;
+  static unsigned int field_bit(int);
+  static void split_mask(unsigned int mask, bool modify, unsigned int &std_mask,
+                         unsigned int &ext_mask);
 };
 
 }    // namespace LAMMPS_NS

@@ -8,6 +8,7 @@
 #include "atom_masks.h"
 #include "error.h"
 #include "pair_tlsph.h"
+#include "tlsph_kk_copies.h"
 
 #include <cmath>
 
@@ -20,7 +21,7 @@ FixTLSPHDtKokkos<DeviceType>::FixTLSPHDtKokkos(LAMMPS *lmp, int narg, char **arg
   if (lmp->kokkos == nullptr)
     error->all(FLERR, "fix tlsph/dt/kk needs the KOKKOS package enabled (-k on)");
   kokkosable = 1;
-  execution_space = ExecutionSpaceFromDevice<DeviceType>::space;
+  execution_space = TLSPHKK::execution_space_of<DeviceType>();
   datamask_read = V_MASK | TYPE_MASK | MASK_MASK;
   datamask_modify = EMPTY_MASK;
 }

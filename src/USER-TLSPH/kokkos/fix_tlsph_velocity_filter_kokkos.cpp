@@ -29,7 +29,7 @@ FixTLSPHVelocityFilterKokkos<DeviceType>::FixTLSPHVelocityFilterKokkos(LAMMPS *l
   kokkosable = 1;
   forward_comm_device = 1;
   atomKK = (AtomKokkos *) atom;
-  execution_space = ExecutionSpaceFromDevice<DeviceType>::space;
+  execution_space = TLSPHKK::execution_space_of<DeviceType>();
   datamask_read = V_MASK | MASK_MASK;
   datamask_modify = V_MASK;
 }
@@ -133,16 +133,16 @@ template <class DeviceType>
 int FixTLSPHVelocityFilterKokkos<DeviceType>::pack_forward_comm(int n, int *list, double *buf,
                                                                int pbc_flag, int *pbc)
 {
-  atomKK->sync(Host, V_MASK);
+  kkpair->host_sync(V_MASK);
   return FixTLSPHVelocityFilter::pack_forward_comm(n, list, buf, pbc_flag, pbc);
 }
 
 template <class DeviceType>
 void FixTLSPHVelocityFilterKokkos<DeviceType>::unpack_forward_comm(int n, int first, double *buf)
 {
-  atomKK->sync(Host, V_MASK);
+  kkpair->host_sync(V_MASK);
   FixTLSPHVelocityFilter::unpack_forward_comm(n, first, buf);
-  atomKK->modified(Host, V_MASK);
+  kkpair->host_modified(V_MASK);
   atomKK->sync(execution_space, V_MASK);
 }
 

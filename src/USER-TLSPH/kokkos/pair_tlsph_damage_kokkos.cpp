@@ -210,7 +210,7 @@ template <class DeviceType> int PairTLSPHDamageKokkos<DeviceType>::deformation_s
 /* ----------------------------------------------------------------------
    between passes (1) and (2), as PairTLSPHDamage::after_deformation (its
    comments): damage, its forward communication, the marks of the damaged
-   particles' intact partners (reverse communication on the host), the
+   particles' intact partners (gathered on the device, see there), the
    smoothed damage and alpha_i into the packed rows
 ------------------------------------------------------------------------- */
 
@@ -234,21 +234,23 @@ template <class DeviceType> void PairTLSPHDamageKokkos<DeviceType>::damage_step(
   this->comm->forward_comm_pair(this);
   this->comm_stage = 0;
 
+  // The marks, gathered: mark_i = the number of i's intact partners that are
+  // damaged (phi_j > 0; a ghost's phi came with the forward communication
+  // above). PairTLSPHDamage scatters instead (mark_j += 1 for every intact
+  // partner j of a damaged i) and sums the ghosts' marks on their owners by
+  // a reverse communication, which this LAMMPS version does on the host
+  // only. Both ends of a bond decide its break from the same two positions,
+  // so the intact bonds are symmetric and both forms count the same pairs;
+  // the smoothing reads only whether mark_i > 0. Nothing leaves the device.
+  (void) nall;
   double *mark = d_mark.data();
   const int *start = this->d_start.data(), *bj = this->d_bj.data();
-  Kokkos::deep_copy(Kokkos::subview(d_mark, std::make_pair(0, nall)), 0.0);
   Kokkos::parallel_for(
       "tlsph/damage/kk:mark", Kokkos::RangePolicy<DeviceType>(0, nlocal), KOKKOS_LAMBDA(const int i) {
-        if (!(phi[i] > 0.0)) return;
-        for (int m = 0; m < nb[i]; m++) Kokkos::atomic_add(&mark[bj[start[i] + m]], 1.0);
+        double c = 0.0;
+        for (int m = 0; m < nb[i]; m++) c += (phi[bj[start[i] + m]] > 0.0) ? 1.0 : 0.0;
+        mark[i] = c;
       });
-  // the marks of ghosts go to their owners (PairTLSPHDamage's reverse
-  // communication of its host array phis, which holds the marks meanwhile)
-  download(this->phis, d_mark, 0, nall);
-  this->comm_stage = 2;
-  this->comm->reverse_comm_pair(this);
-  this->comm_stage = 0;
-  upload(d_mark, this->phis, nlocal, "tlsph/damage/kk:mark");
 
   if (this->dim == 2) smooth_kernel<2>();
   else smooth_kernel<3>();

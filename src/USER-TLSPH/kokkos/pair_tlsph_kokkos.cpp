@@ -14,7 +14,9 @@
 #include "comm.h"
 #include "error.h"
 #include "fix_tlsph_bonds.h"
+#include "fix.h"
 #include "force.h"
+#include "modify.h"
 #include "kokkos.h"
 #include "pair_tlsph_damage.h"
 #include "pair_tlsph_step.h"
@@ -24,8 +26,10 @@
 #include <Kokkos_ScatterView.hpp>
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
 using namespace LAMMPS_NS;
 
@@ -44,7 +48,8 @@ PairTLSPHKokkosT<DeviceType, Base>::PairTLSPHKokkosT(LAMMPS *lmp) : Base(lmp)
                       "(-k on); without it use pair_style tlsph or tlsph/damage");
   kokkosable = 1;
   atomKK = (AtomKokkos *) atom;
-  execution_space = ExecutionSpaceFromDevice<DeviceType>::space;
+  // (the device model of a host backend declares Device: tlsph_kk_copies.h)
+  execution_space = TLSPHKK::execution_space_of<DeviceType>();
   datamask_read = X_MASK | V_MASK | F_MASK | TYPE_MASK | ENERGY_MASK | VIRIAL_MASK;
   datamask_modify = F_MASK | ENERGY_MASK | VIRIAL_MASK;
   kk_nmax = 0;
@@ -71,9 +76,8 @@ void PairTLSPHKokkosT<DeviceType, Base>::init_style()
   // stores on Serial, per-thread copies on OpenMP, atomics on a GPU); the
   // base class has set gather_rows and comm_forward accordingly
   kk_nmax = 0;    // row sizes may have changed: reallocate the device views
-  // the bond fix's per-step tally runs on the device (tally_work_device):
-  // LAMMPS need not copy v to the host for it
-  bonds->datamask_read = EMPTY_MASK;
+  // (the bond fix's per-step tally runs on the device, tally_work_device:
+  // FixTLSPHBonds::init() then asks LAMMPS for no host copies)
 
   // restart files name the pair style by force->pair_style: give it the CPU
   // style's name (as newer LAMMPS versions do with every suffix), so that a
@@ -396,9 +400,8 @@ void PairTLSPHKokkosT<DeviceType, Base>::compute(int eflag, int vflag)
   // after a neighbor build the bond cache is rebuilt on the host (as tlsph
   // does) from x, x0, vfrac, type and the bond fix, then copied to the device
   if (bonds->rebuild) {
-    atomKK->sync(Host, X_MASK | TYPE_MASK | TAG_MASK);
-    avec->k_vfrac.template sync<LMPHostType>();
-    avec->k_x0.template sync<LMPHostType>();
+    host_sync(X_MASK | TYPE_MASK | TAG_MASK);
+    host_sync(EXTENDED_MASK | VFRAC_MASK | X0_MASK);
   }
   // (tlsph/damage: the pre-cracks, once, with a cache rebuild)
   this->refresh_bond_cache();
@@ -491,6 +494,158 @@ void PairTLSPHKokkosT<DeviceType, Base>::work_to_host()
   }
 }
 
+/* atom data of mask current on the host for host code of ours (the bond
+   fix's work and energy, the bond cache rebuild, the classic communication
+   of the velocity filter). On a GPU the atom style's ledger counts what
+   this copies; in the device model (one memory) it is counted here, as a
+   copy to the host of the fields the mask names. host_modified: host code
+   changed them, and the device's next read copies them back. */
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::host_sync(unsigned int mask)
+{
+  atomKK->sync(Host, mask);
+  if (!TLSPHKK::device_model()) return;
+  // a field read again in the same step is on the host already (the device
+  // changes it once per step, in the integrator): counted once per step;
+  // named by the fields the mask itself names (modify's reading)
+  double bytes;
+  const auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
+  const std::string f = avec->mask_fields(mask, true, &bytes);
+  if (f.empty()) return;
+  bigint &last = host_synced[f];
+  if (last == update->ntimestep) return;
+  last = update->ntimestep;
+  TLSPHKK::count_copy("host-code " + f, 1, bytes);
+}
+
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::host_modified(unsigned int mask)
+{
+  atomKK->modified(Host, mask);
+  if (!TLSPHKK::device_model()) return;
+  double bytes;
+  const auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
+  const std::string f = avec->mask_fields(mask, true, &bytes);
+  if (!f.empty()) TLSPHKK::count_copy("host-code " + f, 0, bytes);
+}
+
+/* The host<->device copies of the run just ended (FixTLSPHBonds::post_run),
+   summed over the ranks, one log line per source that copied; then the
+   counts are cleared. Sources:
+     atom FIELD     the atom style's ledger of the DualView protocol (GPU)
+     own LABEL      this style's and its fixes' own arrays (upload, download)
+     host-code F..  host code of ours reading (to host) or changing (to
+                    device) atom fields (device model: tlsph_kk_copies.h)
+     host-fix ID/STYLE  a fix without a Kokkos variant that LAMMPS runs on
+                    the host every step: its datamask_read goes to the
+                    host, its datamask_modify back (one each per hook call)
+     comm-host NAME LAMMPS's forward (x) or reverse (f) communication on the
+                    host (-pk kokkos comm host/no, or no GPU-aware MPI)
+   On a host backend without the device model (one memory, every call names
+   Host) nothing is counted, and the report says so. Format, for scripts
+   (unittest/kokkos/check_kokkos.py, case transfers):
+     tlsph/kk copies: run of N steps on the device|the device model|a host backend ...
+     tlsph/kk copies: SOURCE NAME TO_DEVICE TO_HOST MBYTES */
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::report_copies(bigint nsteps)
+{
+  auto *avec = dynamic_cast<AtomVecPeriKokkos *>(atom->avec);
+  auto &own = TLSPHKK::copy_ledger();
+  if (!on_device()) {
+    if (avec) avec->ledger_clear_counts();
+    own.clear();
+    if (comm->me == 0)
+      utils::logmesg(this->lmp, fmt::format("tlsph/kk copies: run of {} steps on a host backend: "
+                                            "one memory, no copies to count\n", nsteps));
+    return;
+  }
+  const bool model = TLSPHKK::device_model();
+  std::vector<std::string> names;
+  std::vector<double> counts;    // per entry: to device, to host, bytes
+  auto add = [&](const std::string &name, double to_dev, double to_host, double bytes) {
+    names.push_back(name);
+    counts.push_back(to_dev);
+    counts.push_back(to_host);
+    counts.push_back(bytes);
+  };
+  if (avec) {
+    // on a GPU; the device model's calls name Host and Device as it pleases
+    // LAMMPS's own styles (one memory): their counts would mean nothing
+    if (!model)
+      for (int k = 0; k < AtomVecPeriKokkos::NFIELD; k++)
+        add(std::string("atom ") + AtomVecPeriKokkos::field_name(k), avec->ledger.copies[k][0],
+            avec->ledger.copies[k][1], avec->ledger.bytes[k][0] + avec->ledger.bytes[k][1]);
+    avec->ledger_clear_counts();
+  }
+  // fixes LAMMPS runs on the host every step (ModifyKokkos: their masks to
+  // the host before each hook, back after it); the same on every rank
+  {
+    using namespace FixConst;
+    const int hooks[] = {INITIAL_INTEGRATE, POST_INTEGRATE, PRE_FORCE,     PRE_REVERSE,
+                         POST_FORCE,        FINAL_INTEGRATE, END_OF_STEP};
+    for (int f = 0; f < this->modify->nfix; f++) {
+      Fix *fix = this->modify->fix[f];
+      if (fix->kokkosable) continue;
+      int calls = 0;
+      for (const int h : hooks)
+        if (this->modify->fmask[f] & h) calls += (h == END_OF_STEP) ? 0 : 1;
+      double per_step = calls;
+      if ((this->modify->fmask[f] & END_OF_STEP) && fix->nevery > 0)
+        per_step += 1.0 / fix->nevery;
+      if (per_step == 0.0) continue;
+      // counted whatever its masks say: a host fix whose masks are empty
+      // (many fixes of this LAMMPS version declare none) reads stale data
+      // on a GPU instead of copying, which is no better
+      const double n = per_step * nsteps;
+      add(fmt::format("host-fix {}/{}", fix->id, fix->style), n, n, 0.0);
+    }
+  }
+  // LAMMPS's communication of x (forward, every step) and of f (reverse,
+  // newton on) through the host
+  {
+    const auto *kk = this->lmp->kokkos;
+    if (kk->forward_comm_classic || kk->forward_comm_on_host)
+      add("comm-host x", (double) nsteps, (double) nsteps, 0.0);
+    if (this->force->newton_pair && (kk->reverse_comm_classic || kk->reverse_comm_on_host))
+      add("comm-host f", (double) nsteps, (double) nsteps, 0.0);
+  }
+  // the labels of the own ledger are the same on every rank, but a rank may
+  // not have copied one of them: agree on the union first (rank 0's list
+  // plus what the others add, gathered as one string)
+  std::string mine;
+  for (const auto &e : own) mine += e.first + "\n";
+  int len = mine.size(), nprocs = comm->nprocs;
+  std::vector<int> lens(nprocs), displs(nprocs, 0);
+  MPI_Allgather(&len, 1, MPI_INT, lens.data(), 1, MPI_INT, this->world);
+  for (int p = 1; p < nprocs; p++) displs[p] = displs[p - 1] + lens[p - 1];
+  std::string all(displs[nprocs - 1] + lens[nprocs - 1], '\0');
+  MPI_Allgatherv(mine.data(), len, MPI_CHAR, &all[0], lens.data(), displs.data(), MPI_CHAR,
+                 this->world);
+  std::map<std::string, int> labels;
+  for (size_t a = 0, b; (b = all.find('\n', a)) != std::string::npos; a = b + 1)
+    labels[all.substr(a, b - a)] = 0;
+  for (const auto &l : labels) {
+    const auto it = own.find(l.first);
+    std::string name = l.first.empty() ? std::string("(unlabelled)") : l.first;
+    if (name.compare(0, 10, "host-code ") != 0) name = "own " + name;
+    if (it == own.end()) add(name, 0.0, 0.0, 0.0);
+    else add(name, it->second.n[0], it->second.n[1], it->second.bytes[0] + it->second.bytes[1]);
+  }
+  own.clear();
+  std::vector<double> sum(counts.size());
+  MPI_Allreduce(counts.data(), sum.data(), (int) counts.size(), MPI_DOUBLE, MPI_SUM, this->world);
+  if (comm->me != 0) return;
+  std::string out = fmt::format("tlsph/kk copies: run of {} steps on {} (host<->device, all "
+                                "ranks)\n", nsteps,
+                                model ? "the device model (a host backend, TLSPH_KK_DEVICE_MODEL)"
+                                      : "the device");
+  for (size_t e = 0; e < names.size(); e++)
+    if (sum[3 * e] > 0 || sum[3 * e + 1] > 0)
+      out += fmt::format("tlsph/kk copies: {} {:.0f} {:.0f} {:.3f}\n", names[e], sum[3 * e],
+                         sum[3 * e + 1], sum[3 * e + 2] / 1.0e6);
+  utils::logmesg(this->lmp, out);
+}
+
 /* F, psi and the hourglass energy of the local particles to the host
    arrays of PairTLSPH (the computes read them there) */
 template <class DeviceType, class Base>
@@ -563,6 +718,7 @@ void PairTLSPHKokkosT<DeviceType, Base>::unpack_forward_comm(int n, int first, d
   const size_t ps = comm_stride(stage);
   Kokkos::deep_copy(Kokkos::subview(comm_view(stage), std::make_pair(ps * first, ps * (first + n))),
                     HostUnmanaged<const double>(comm_host(stage) + ps * first, ps * n));
+  TLSPHKK::count_copy(comm_view(stage).label(), 0, sizeof(double) * (double) (ps * n));
 }
 
 template <class DeviceType, class Base>

@@ -33,32 +33,11 @@ PairStyle(tlsph/kk/host,PairTLSPHKokkos<LMPHostType>);
 #include "kokkos_base.h"
 #include "kokkos_type.h"
 #include "pair_tlsph.h"
+#include "tlsph_kk_copies.h"
 
+#include <map>
 #include <string>
 #include <utility>
-
-// host <-> device copies of the /kk styles
-namespace TLSPHKK {
-template <class T>
-using HostUnmanaged = Kokkos::View<T *, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
-
-// host array h[0..n) -> device view d (grown, with slack, when too short)
-template <class View, class T> inline void upload(View &d, const T *h, size_t n, const char *name)
-{
-  if (d.extent(0) < n)
-    d = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name)), n + n / 8 + 16);
-  if (n == 0) return;
-  Kokkos::deep_copy(Kokkos::subview(d, std::make_pair(size_t(0), n)),
-                    HostUnmanaged<const T>(h, n));
-}
-
-// device view d[first .. first + n) -> host array h[0..n)
-template <class View, class T> inline void download(T *h, const View &d, size_t first, size_t n)
-{
-  if (n == 0) return;
-  Kokkos::deep_copy(HostUnmanaged<T>(h, n), Kokkos::subview(d, std::make_pair(first, first + n)));
-}
-}    // namespace TLSPHKK
 
 namespace LAMMPS_NS {
 
@@ -79,6 +58,10 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   void sync_host() override;
   bool tally_work_device(double dt) override;
   void work_to_host() override;
+  void report_copies(bigint nsteps) override;
+  bool on_device() const override { return this->execution_space == Device; }
+  void host_sync(unsigned int mask) override;
+  void host_modified(unsigned int mask) override;
 
   int pack_forward_comm_kokkos(int, DAT::tdual_int_2d, int, DAT::tdual_xfloat_1d &, int,
                                int *) override;
@@ -168,6 +151,7 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   dview d_whg, d_wvisc;    // the bond fix's work tallies while work_device is set
   bool work_device;        // the tallies live on the device (the fix's host copy is stale)
   bool forces_on_host;     // the fix's host f_hg, f_visc hold this step's forces
+  std::map<std::string, bigint> host_synced;    // device model: step of each host_sync
   int host_current;        // 1: the host arrays F, psi, ehg hold this step's values
   bigint host_step;
   void grow_device();
