@@ -22,7 +22,8 @@ export LMP_TLSPH = $(BUILD_ABS)/lmp_tlsph
 export TLSPH_PLUGIN = $(BUILD_ABS)/tlsphplugin.so
 
 .PHONY: all setup configure build run test test-sanitize fuzz bench bench-instructions bench-compare \
-        bench-pareto bench-roofline bench-kokkos kokkos kokkos-cuda kokkos-stock kk-plugin clean
+        bench-pareto bench-roofline bench-kokkos kokkos kokkos-cuda kokkos-stock kk-plugin clean \
+        gpu-bundle gpu-bundle-host gpu-check-host
 
 all: build
 
@@ -91,6 +92,21 @@ kokkos-stock:
 
 kk-plugin: setup
 	@TLSPH_JOBS=$(JOBS) bash scripts/build-kk-plugin.sh "$(BUILD_ABS)/kkplugin"
+
+# the GPU bundle (doc/kokkos-cuda.md): a static LAMMPS with KOKKOS/CUDA for
+# sm_90 (+ PTX), PERI and our package, MPI STUBS, packed into gpu-bundle/
+# (git-ignored, <= 48 MiB with its fallback sources) to travel with the
+# checkout to a GPU machine, where `bash scripts/gpu-check.sh` runs the
+# device check; gpu-bundle-host builds its host twin (Kokkos Serial) and
+# gpu-check-host runs the check against it, as CI does
+gpu-bundle: setup
+	@TLSPH_JOBS=$(JOBS) bash scripts/gpu-bundle.sh cuda
+
+gpu-bundle-host: setup
+	@TLSPH_JOBS=$(JOBS) bash scripts/gpu-bundle.sh host
+
+gpu-check-host: gpu-bundle-host
+	bash scripts/gpu-check.sh --host
 
 # tlsph/kk against tlsph on the host, side by side in the make-kokkos LAMMPS
 # (bench/kokkos.md; a few minutes)

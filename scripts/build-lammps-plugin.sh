@@ -112,14 +112,36 @@ case "$VARIANT" in
           EXTRA_PKGS=(-D PKG_KOKKOS=on -D EXTERNAL_KOKKOS=off -D DOWNLOAD_KOKKOS=off
                       -D Kokkos_ENABLE_SERIAL=on -D Kokkos_ENABLE_OPENMP=on
                       -D Kokkos_ENABLE_CUDA=off -D BUILD_OMP=on) ;;
-  *) die "unknown variant '$VARIANT' (allowed: plugin, bench, kokkos, kokkos-stock, kokkos-cuda, kokkos-omp)" ;;
+  # bundle-cuda, bundle-host: the GPU bundle (scripts/gpu-bundle.sh,
+  # doc/kokkos-cuda.md) and its host twin: one static lmp, MPI STUBS, no
+  # PLUGIN, KOKKOS with only the styles a TLSPH run uses (TRIM_KOKKOS below),
+  # PERI, our package compiled in; sm_90 SASS + compute_90 PTX, or Kokkos
+  # Serial on the host (the same configuration, for CI)
+  bundle-cuda)
+          EXTRA_PKGS=(-D PKG_KOKKOS=on -D EXTERNAL_KOKKOS=off -D DOWNLOAD_KOKKOS=off
+                      -D Kokkos_ENABLE_SERIAL=on -D Kokkos_ENABLE_OPENMP=off
+                      -D Kokkos_ENABLE_CUDA=on -D Kokkos_ENABLE_CUDA_UVM=off
+                      -D Kokkos_ARCH_HOPPER90=on
+                      -D "TLSPH_CUDA_GENCODE=arch=compute_90,code=sm_90;arch=compute_90,code=compute_90") ;;
+  bundle-host)
+          EXTRA_PKGS=(-D PKG_KOKKOS=on -D EXTERNAL_KOKKOS=off -D DOWNLOAD_KOKKOS=off
+                      -D Kokkos_ENABLE_SERIAL=on -D Kokkos_ENABLE_OPENMP=off
+                      -D Kokkos_ENABLE_CUDA=off) ;;
+  *) die "unknown variant '$VARIANT' (allowed: plugin, bench, kokkos, kokkos-stock, kokkos-cuda, kokkos-omp, bundle-cuda, bundle-host)" ;;
 esac
 # LAMMPS_MACHINE: the variant's name, with '_' for '-' (lmp_kokkos_cuda,
 # liblammps_kokkos_cuda.so.0); the same as the variant for the others
 MACHINE=${VARIANT//-/_}
+# CUDA: the variants built with nvcc; BUNDLE: the static, MPI-free bundle builds
+CUDA=0; BUNDLE=0
+case "$VARIANT" in kokkos-cuda|bundle-cuda) CUDA=1 ;; esac
+case "$VARIANT" in bundle-*) BUNDLE=1
+  EXTRA_PKGS+=(-D BUILD_MPI=off -D BUILD_SHARED_LIBS=off -D PKG_PLUGIN=off
+               -D "CMAKE_EXE_LINKER_FLAGS=-static-libstdc++ -static-libgcc") ;;
+esac
 
 # kokkos-cuda: the CUDA toolkit (nvcc need not be on PATH)
-if [ "$VARIANT" = kokkos-cuda ]; then
+if [ "$CUDA" = 1 ]; then
   CUDA_HOME=${TLSPH_CUDA_HOME:-/usr/local/cuda}
   [ -x "$CUDA_HOME/bin/nvcc" ] ||
     die "kokkos-cuda needs a CUDA toolkit: no $CUDA_HOME/bin/nvcc (set TLSPH_CUDA_HOME)"
@@ -164,6 +186,7 @@ PLUGIN_FLAGS=$(sed -n 's/^set(CMAKE_CXX_FLAGS_RELEASE "\(.*\)")$/\1/p' "$HERE/..
 [ -n "$PLUGIN_FLAGS" ] || die "cannot read CMAKE_CXX_FLAGS_RELEASE from $HERE/../CMakeLists.txt"
 case "$VARIANT" in
   bench) RELEASE_FLAGS=$PLUGIN_FLAGS ;;
+  bundle-*) RELEASE_FLAGS=$PLUGIN_FLAGS ;;    # the speed runs of gpu-check.sh
   *)     RELEASE_FLAGS="-O2 -DNDEBUG" ;;
 esac
 PREFIX="$CACHE/lammps-$VARIANT-$SRC_VER"
@@ -177,7 +200,7 @@ if [ -x "$LMP" ] && [ -f "$PREFIX/build/CMakeCache.txt" ] &&
 fi
 
 # kokkos-cuda: a build (or a partial one) is never continued with another nvcc
-if [ "$VARIANT" = kokkos-cuda ] && [ -f "$PREFIX/nvcc-version.txt" ] &&
+if [ "$CUDA" = 1 ] && [ -f "$PREFIX/nvcc-version.txt" ] &&
    [ "$(cat "$PREFIX/nvcc-version.txt")" != "$NVCC_VERSION" ]; then
   die "$PREFIX was built with nvcc $(cat "$PREFIX/nvcc-version.txt"), $CUDA_HOME/bin/nvcc is $NVCC_VERSION: remove $PREFIX to rebuild"
 fi
@@ -187,7 +210,7 @@ fi
 # against the signed index) into $CACHE/trilinos-<version>/, through the
 # private deb-src list of setup.sh ($CACHE/apt; `setup.sh --check-source`
 # writes and updates it when it has no such trilinos)
-if [ "$VARIANT" = kokkos-cuda ] || [ "$VARIANT" = kokkos-omp ]; then
+if [ "$VARIANT" = kokkos-cuda ] || [ "$VARIANT" = kokkos-omp ] || [ "$BUNDLE" = 1 ]; then
   TRILINOS_VER=${TLSPH_TRILINOS_VERSION:-13.2.0-4}
   TRILINOS_DIR="$CACHE/trilinos-$TRILINOS_VER"
   trilinos_orig() { ls "$TRILINOS_DIR"/trilinos_*.orig.tar.* 2>/dev/null | head -n1 || true; }
@@ -212,7 +235,7 @@ fi
 # checked on every call: ninja recompiles what changed (seconds when nothing did)
 REPO=$(cd "$HERE/.." && pwd -P)
 BUILD_ALWAYS=0
-case "$VARIANT" in kokkos|kokkos-cuda|kokkos-omp) BUILD_ALWAYS=1 ;; esac
+case "$VARIANT" in kokkos|kokkos-cuda|kokkos-omp|bundle-*) BUILD_ALWAYS=1 ;; esac
 if [ ! -x "$LMP" ] || [ "$BUILD_ALWAYS" = 1 ]; then
   mkdir -p "$PREFIX"
   exec 9>"$PREFIX/.lock"          # one build at a time per cache
@@ -251,7 +274,11 @@ if [ "$BUILD_ALWAYS" = 1 ] && [ -x "$LMP" ] && [ -f "$PREFIX/build/build.ninja" 
   fi
   mv "$PREFIX/tlsph-files.new" "$PREFIX/tlsph-files.txt"
   ninja -C "$BUILD" -j"$JOBS" lmp_$MACHINE >&2
-  if ! cmp -s "$BUILD/lmp_$MACHINE" "$LMP" || ! cmp -s "$BUILD/liblammps_$MACHINE.so.0" "$PREFIX/lib/liblammps_$MACHINE.so.0"; then
+  if [ "$BUNDLE" = 1 ]; then
+    # static: the executable alone, stripped
+    strip -o "$PREFIX/bin/lmp.tmp" "$BUILD/lmp_$MACHINE"
+    cmp -s "$PREFIX/bin/lmp.tmp" "$LMP" && rm -f "$PREFIX/bin/lmp.tmp" || mv "$PREFIX/bin/lmp.tmp" "$LMP"
+  elif ! cmp -s "$BUILD/lmp_$MACHINE" "$LMP" || ! cmp -s "$BUILD/liblammps_$MACHINE.so.0" "$PREFIX/lib/liblammps_$MACHINE.so.0"; then
     cp -a "$BUILD"/liblammps_$MACHINE.so* "$PREFIX/lib/"
     case "$VARIANT" in kokkos-cuda|kokkos-omp) cp -a "$BUILD"/lib/kokkos/*/src/libkokkos*.so* "$PREFIX/lib/" ;; esac
     cp "$BUILD/lmp_$MACHINE" "$PREFIX/bin/lmp.tmp" && mv "$PREFIX/bin/lmp.tmp" "$LMP"
@@ -282,7 +309,7 @@ if [ ! -x "$LMP" ]; then
     SRC_TREE="$PREFIX/source"
     rm -rf "$SRC_TREE"
     cp -al "$LAMMPS_SOURCE_DIR" "$SRC_TREE"
-  elif [ "$VARIANT" = kokkos-cuda ] || [ "$VARIANT" = kokkos-omp ]; then
+  elif [ "$VARIANT" = kokkos-cuda ] || [ "$VARIANT" = kokkos-omp ] || [ "$BUNDLE" = 1 ]; then
     # hard-linked copy of the tree, kept once complete: after a failed or
     # interrupted build, ninja goes on from where it stopped (the hard links
     # keep their times; lib/kokkos and our files are updated by content below)
@@ -290,6 +317,52 @@ if [ ! -x "$LMP" ]; then
     if [ ! -f "$PREFIX/source.complete" ]; then
       rm -rf "$SRC_TREE"
       cp -al "$LAMMPS_SOURCE_DIR" "$SRC_TREE"
+      if [ "$BUNDLE" = 1 ]; then
+        # TRIM_KOKKOS: only the KOKKOS styles a TLSPH run uses. Every style
+        # file (a header with a PairStyle(, FixStyle(, ... line, and its .cpp) of src/KOKKOS is
+        # removed from the copy unless kept below or included by a kept file
+        # (the include closure over src/KOKKOS); LAMMPS's CMake registers what
+        # is left. A style missing here falls back to its CPU version at run
+        # time (-sf kk), as without KOKKOS.
+        /usr/bin/python3 - "$SRC_TREE/src/KOKKOS" <<'TRIM_KOKKOS' >&2 || die "cannot trim $SRC_TREE/src/KOKKOS"
+import os, re, sys
+d = sys.argv[1]
+keep_styles = {"fix_nve", "fix_nh", "fix_nvt", "fix_npt", "fix_nph", "fix_setforce",
+               "fix_enforce2d", "fix_momentum", "fix_freeze", "fix_gravity",
+               "fix_wall_reflect", "fix_property_atom", "fix_deform", "fix_minimize",
+               "verlet", "min_cg", "atom_vec_atomic", "atom_vec_hybrid", "region_block",
+               "compute_temp", "compute_ke_atom"}
+files = sorted(os.listdir(d))
+# (neighbor styles, NBinStyle/NPairStyle/NStencilStyle, are the core: kept)
+style = re.compile(r"^\s*(Pair|Compute|Fix|Bond|Angle|Dihedral|Improper|Region|Atom|Integrate|Minimize|Command|KSpace)Style\(", re.M)
+def base(f):
+    return re.sub(r"_kokkos(_impl)?\.(h|cpp)$", "", f)
+styles = set()
+for f in files:
+    if f.endswith("_kokkos.h") and style.search(open(os.path.join(d, f), errors="replace").read()):
+        styles.add(base(f))
+drop = {s for s in styles if s not in keep_styles}
+kept = [f for f in files if base(f) not in drop]
+inc = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+changed = True
+while changed:
+    changed = False
+    for f in kept:
+        for h in inc.findall(open(os.path.join(d, f), errors="replace").read()):
+            b = base(h)
+            if b in drop and os.path.exists(os.path.join(d, h)):
+                drop.discard(b)
+                kept = [g for g in files if base(g) not in drop]
+                changed = True
+n = 0
+for f in files:
+    if base(f) in drop:
+        os.remove(os.path.join(d, f))
+        n += 1
+print("build-lammps-plugin.sh: TRIM_KOKKOS: %d of %d KOKKOS styles removed (%d files); kept: %s"
+      % (len(drop), len(styles), n, " ".join(sorted(styles - drop))))
+TRIM_KOKKOS
+      fi
       : > "$PREFIX/source.complete"
     fi
   fi
@@ -344,7 +417,7 @@ open(p, "w").write(s.replace(old, new))
 KOKKOS_PATCH
     log "patched $f: existing include directories of Kokkos::kokkos plus Kokkos_INCLUDE_DIRS (the only change)"
   fi
-  if [ "$VARIANT" = kokkos-cuda ] || [ "$VARIANT" = kokkos-omp ]; then
+  if [ "$VARIANT" = kokkos-cuda ] || [ "$VARIANT" = kokkos-omp ] || [ "$BUNDLE" = 1 ]; then
     # Kokkos 3.4.01 from the trilinos source: extracted afresh (5-10 s) into
     # kokkos.new, patched there (KOKKOS_CUDA_PATCH), then copied into
     # source/lib/kokkos (which the +ds LAMMPS tree lacks) file by file, only
@@ -360,7 +433,7 @@ KOKKOS_PATCH
     kkv=$(sed -n 's/^set(Kokkos_VERSION_\(MAJOR\|MINOR\|PATCH\) \([0-9]*\))$/\2/p' "$PREFIX/kokkos.new/CMakeLists.txt" | paste -sd.)
     [ "$kkv" = 3.4.01 ] || die "trilinos $TRILINOS_VER has Kokkos '$kkv', KOKKOS_CUDA_PATCH is for 3.4.01"
     # (kokkos-omp: Kokkos unpatched; the CUDA patch runs for kokkos-cuda only)
-    [ "$VARIANT" != kokkos-cuda ] || /usr/bin/python3 - "$PREFIX/kokkos.new" "$CUDA_HOME/bin/nvcc" <<'KOKKOS_CUDA_PATCH' ||
+    [ "$CUDA" != 1 ] || /usr/bin/python3 - "$PREFIX/kokkos.new" "$CUDA_HOME/bin/nvcc" <<'KOKKOS_CUDA_PATCH' ||
 import os, re, sys
 kk, nvcc = sys.argv[1], sys.argv[2]
 
@@ -509,7 +582,7 @@ for root, dirs, files in os.walk(dst):
 print("build-lammps-plugin.sh: lib/kokkos: %d files new or changed, %d removed" % (changed, removed))
 SYNC_KOKKOS
     rm -rf "$PREFIX/kokkos.new"
-    if [ "$VARIANT" = kokkos-cuda ]; then
+    if [ "$CUDA" = 1 ]; then
       # nvcc_wrapper as the C++ compiler (it runs nvcc, and g++ for the host
       # code); Kokkos's find_package(CUDAToolkit) (libcudart) in the same
       # toolkit; RUNPATH: also the toolkit's libcudart.so.13, wherever ld.so looks
@@ -550,6 +623,27 @@ SYNC_KOKKOS
     "${EXTRA_PKGS[@]}" >&2
   ninja -C "$BUILD" -j"$JOBS" lmp_$MACHINE >&2
 
+  if [ "$BUNDLE" = 1 ]; then
+    # the bundle: one static executable (libstdc++, libgcc, LAMMPS, Kokkos,
+    # and the CUDA runtime for bundle-cuda), stripped; its GPU code checked
+    mkdir -p "$PREFIX/bin"
+    exe="$BUILD/lmp_$MACHINE"
+    if [ "$CUDA" = 1 ]; then
+      so=$exe
+      /usr/bin/python3 "$HERE/fatbin_check.py" "$exe" sm_90 compute_90 >&2 ||
+        die "$exe lacks GPU code of TLSPH_CUDA_GENCODE"
+    fi
+    deps=$(ldd "$exe" 2>&1 || true)
+    if grep -Eq 'libstdc\+\+|libgcc_s|liblammps|libkokkos|libmpi|libcudart' <<<"$deps"; then
+      printf '%s\n' "$deps" >&2
+      die "$exe links a library that the bundle must hold statically (above)"
+    fi
+    strip -o "$PREFIX/bin/lmp.tmp" "$exe"
+    mv "$PREFIX/bin/lmp.tmp" "$LMP"
+    log "built in $(( $(date +%s) - start )) s: $LMP ($(du -k "$LMP" | cut -f1) kB stripped); needs: $(tr -s ' \t' ' ' <<<"$deps" | sed 's/ (0x[0-9a-f]*)//' | paste -sd';')"
+    printf '%s\n' "$LMP"
+    exit 0
+  fi
   # symbols a dlopen()ed plugin needs are exported by the shared library
   so="$BUILD/liblammps_$MACHINE.so.0"
   syms=$(nm -D --defined-only "$so")
@@ -561,44 +655,7 @@ SYNC_KOKKOS
   # TLSPH_CUDA_GENCODE (what `cuobjdump --list-elf` shows; CUDA 13 fat
   # binaries, read here from .nv_fatbin, as this toolkit may lack cuobjdump)
   if [ "$VARIANT" = kokkos-cuda ]; then
-    /usr/bin/python3 - "$so" sm_90 sm_80 compute_90 <<'FATBIN_CHECK' >&2 ||
-import collections, os, struct, subprocess, sys, tempfile
-so, want = sys.argv[1], sys.argv[2:]
-with tempfile.TemporaryDirectory() as d:
-    subprocess.run(["objcopy", "-O", "binary", "--only-section=.nv_fatbin", so,
-                    os.path.join(d, "f")], check=True)
-    data = open(os.path.join(d, "f"), "rb").read()
-# containers: u32 magic 0xBA55ED50, u16 version, u16 header size, u64 size;
-# then entries: u16 kind (1 PTX, 2 ELF), u16, u32 entry header size, u64
-# payload size, ..., u32 at byte 28: the arch; the payload follows. An
-# uncompressed ELF payload (a cubin) has its arch in e_flags bits 8-15.
-count, fatbins, p, bad = collections.Counter(), 0, 0, 0
-magic = struct.pack("<I", 0xBA55ED50)
-while True:
-    p = data.find(magic, p)
-    if p < 0:
-        break
-    _, _, hsize, size = struct.unpack_from("<IHHQ", data, p)
-    q, end, fatbins = p + hsize, p + hsize + size, fatbins + 1
-    while q + 32 <= end:
-        kind, _, ehsize, psize = struct.unpack_from("<HHIQ", data, q)
-        if ehsize == 0:
-            break
-        arch = struct.unpack_from("<I", data, q + 28)[0]
-        pl = data[q + ehsize:q + ehsize + 64]
-        if kind == 2 and pl[:4] == b"\x7fELF" and (struct.unpack_from("<I", pl, 48)[0] >> 8) & 0xff != arch:
-            bad += 1
-        count[{1: "compute_%d", 2: "sm_%d"}.get(kind, "kind%d_" % kind + "%d") % arch] += 1
-        q += ehsize + psize
-    p = end
-print("build-lammps-plugin.sh: %s: %d fat binaries in .nv_fatbin (%d bytes): %s" % (
-    os.path.basename(so), fatbins, len(data),
-    ", ".join("%s %d" % (k.replace("sm_", "ELF sm_").replace("compute_", "PTX compute_"), n)
-              for k, n in sorted(count.items()))))
-missing = [w for w in want if not count[w]]
-if missing or bad:
-    sys.exit("no GPU code for %s; %d cubins whose ELF arch differs" % (" ".join(missing) or "-", bad))
-FATBIN_CHECK
+    /usr/bin/python3 "$HERE/fatbin_check.py" "$so" sm_90 sm_80 compute_90 >&2 ||
       die "$so lacks GPU code of TLSPH_CUDA_GENCODE"
   fi
 

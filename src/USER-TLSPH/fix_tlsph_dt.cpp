@@ -83,7 +83,7 @@ double FixTLSPHDt::local_max_speed()
 
 void FixTLSPHDt::update_dt()
 {
-  const double cmax = local_max_speed();
+  double cmax = local_max_speed();    // (not const: MPI STUBS take void *)
   double call;
   MPI_Allreduce(&cmax, &call, 1, MPI_DOUBLE, MPI_MAX, world);
   if (call <= 0.0) return;

@@ -80,7 +80,9 @@ def lmp_run(args, tag, inp, extra, kk, np=1, env_extra=None):
         if hasattr(os, "geteuid") and os.geteuid() == 0:
             cmd += ["--allow-run-as-root"]
         cmd += ["-np", str(np)]
-    kkflags = ["-k", "on", "t", str(args.threads)] + KK[2:] if kk else []
+    kkflags = []
+    if kk:
+        kkflags = (["-k", "on", "g", "1"] if args.gpu else ["-k", "on", "t", str(args.threads)]) + KK[2:]
     if args.plugin:
         inp = plugin_input(args, inp)
     cmd += [args.lmp] + kkflags + ["-in", inp, "-log", tag + ".log", "-screen",
@@ -344,6 +346,9 @@ def case_damage(args):
     runs = (("cpu_off", False, "off", 1), ("cpu_on", False, "on", 1), ("kk", True, "off", 1),
             ("kk_on", True, "on", 1), ("kk_np2", True, "off", 2))
     for tag, kk, newton, np in runs:
+        if np > args.max_ranks:
+            print("%-8s skipped (%d ranks, --max-ranks %d)" % (tag, np, args.max_ranks))
+            continue
         log, prob = lmp_run(args, tag, "in.damage", ["-var", "newton", newton] + args.options,
                             kk, np)
         problems += ["%s: %s" % (tag, p) for p in prob]
@@ -492,20 +497,24 @@ def case_transfers(args):
     problems = []
     n1, n2 = 10, 30
     for style in ("tlsph", "damage"):
-        plain, plain_row, p = transfer_run(args, "transfers_%s_host" % style, style, n1, n2, 1,
-                                           False)
-        problems += p
-        if plain and any(r[1] != "host" for r in plain):
-            problems.append("%s: the plain host backend reports %s, not 'a host backend'"
-                            % (style, [r[1] for r in plain]))
+        plain_row = None
+        if not args.gpu:
+            plain, plain_row, p = transfer_run(args, "transfers_%s_host" % style, style, n1, n2,
+                                               1, False)
+            problems += p
+            if plain and any(r[1] != "host" for r in plain):
+                problems.append("%s: the plain host backend reports %s, not 'a host backend'"
+                                % (style, [r[1] for r in plain]))
         for np in (1, 2):
+            if np > args.max_ranks:
+                continue
             tag = "transfers_%s_np%d" % (style, np)
             runs, row, p = transfer_run(args, tag, style, n1, n2, np, True)
             problems += p
             if not runs:
                 continue
             kinds = set(r[1] for r in runs)
-            if kinds not in ({"model"}, {"device"}):
+            if kinds != ({"device"} if args.gpu else {"model"}):
                 problems.append("%s: the runs report %s, expected the device model (or a GPU)"
                                 % (tag, sorted(kinds)))
                 continue
@@ -514,7 +523,7 @@ def case_transfers(args):
             if not runs[0][2]:
                 problems.append("%s: the warm-up run reports no copies: the ledger counts "
                                 "nothing" % tag)
-            if np == 1 and row != plain_row:
+            if np == 1 and not args.gpu and row != plain_row:
                 problems.append("%s: last thermo row %s differs from the plain host backend's %s"
                                 % (tag, row, plain_row))
             per = per_step_copies(runs, n1, n2)
@@ -549,11 +558,19 @@ def case_transfers(args):
 
 
 def main():
+    global TOL, DAMAGE_XTOL
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--lmp", required=True, help="the KOKKOS-enabled lmp (build-lammps-plugin.sh kokkos)")
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart", "damage", "plugin", "transfers"])
+    ap.add_argument("--gpu", action="store_true", help="the /kk runs on GPU 0 (-k on g 1); "
+                    "scripts/gpu-check.sh")
+    ap.add_argument("--tol", type=float, default=TOL, help="relative tolerance of the /kk "
+                    "results against the CPU styles' (default %(default)g, the host backend's "
+                    "bitwise-equal arithmetic up to summation order; on a GPU see gpu-check.sh)")
+    ap.add_argument("--max-ranks", type=int, default=2, help="skip the runs on more MPI ranks "
+                    "(1: a LAMMPS with MPI STUBS, the GPU bundle)")
     ap.add_argument("--plugin", help="tlsphkkplugin.so: every run loads it first (see above)")
     ap.add_argument("--cpu-plugin", help="--case plugin: tlsphplugin.so, whose styles the "
                     "kk plugin must register too")
@@ -571,6 +588,10 @@ def main():
     for a in ("plugin", "cpu_plugin"):
         if getattr(args, a):
             setattr(args, a, os.path.abspath(getattr(args, a)))
+    if args.tol != TOL:
+        # the breaking run's state tolerance grows with TOL as from 1e-12 to 1e-8
+        DAMAGE_XTOL = max(DAMAGE_XTOL, args.tol * 1e4)
+        TOL = args.tol
     problems = {"forces": case_forces, "mpi": case_mpi, "restart": case_restart,
                 "damage": case_damage, "plugin": case_plugin,
                 "transfers": case_transfers}[args.case](args)

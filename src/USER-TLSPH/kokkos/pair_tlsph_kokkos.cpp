@@ -619,7 +619,7 @@ void PairTLSPHKokkosT<DeviceType, Base>::report_copies(bigint nsteps)
   MPI_Allgather(&len, 1, MPI_INT, lens.data(), 1, MPI_INT, this->world);
   for (int p = 1; p < nprocs; p++) displs[p] = displs[p - 1] + lens[p - 1];
   std::string all(displs[nprocs - 1] + lens[nprocs - 1], '\0');
-  MPI_Allgatherv(mine.data(), len, MPI_CHAR, &all[0], lens.data(), displs.data(), MPI_CHAR,
+  MPI_Allgatherv(&mine[0], len, MPI_CHAR, &all[0], lens.data(), displs.data(), MPI_CHAR,
                  this->world);
   std::map<std::string, int> labels;
   for (size_t a = 0, b; (b = all.find('\n', a)) != std::string::npos; a = b + 1)

@@ -1,0 +1,190 @@
+#!/usr/bin/env bash
+# The device check (doc/kokkos-cuda.md, "The device check"): ONE command on
+# the GPU machine, from the root of the checkout with gpu-bundle/ in it
+# (make gpu-bundle here first), finishing in at most 7 minutes:
+#
+#   bash scripts/gpu-check.sh [--out DIR] [--budget S] [--sizes "0.25 1 4 16"]
+#
+#   1. the machine: nvidia-smi, the driver and glibc against what the bundle
+#      needs (MANIFEST; stops with a message when either is too old), the
+#      versions of the bundle's LAMMPS and Kokkos (env.txt)
+#   2. the /kk tests of CI on GPU 0 (unittest/kokkos/check_kokkos.py --gpu
+#      --max-ranks 1; the references are the CPU styles of the same binary):
+#      forces (2D/3D, isotropic/orthotropic, both hourglass forms and
+#      gradient orders, newton on/off), a restart written on the GPU read by
+#      the CPU styles and back, damage (a shortened crack-branching run: the
+#      same broken-bond set and damage as the CPU style, energies), transfers
+#      (an ordinary step copies nothing between host and device: the atom
+#      style's DualView ledger) (tests.txt)
+#   3. speed: 3D tlsph/damage/kk, FP64, bench/in.gpu at about 0.25, 1, 4 and
+#      16 M particles, newton on and off: ns per particle-step of the
+#      ordinary steps, and the time of one neighbor rebuild (bond cache
+#      rebuilt on the host and uploaded); sizes left when the budget is
+#      spent are listed as skipped (speed.csv)
+#   4. the device's copy bandwidth (bin/gpu_bandwidth), the roofline ceiling
+#      (bandwidth.txt)
+#   summary.md: the tables; logs.tar.xz: every LAMMPS log. At most 8 files,
+#   in DIR (default: $OUT when set, else gpu-check-out/).
+#
+#   bash scripts/gpu-check.sh --host [--lmp PATH]   the same script on the
+#      host twin (make gpu-bundle-host; Kokkos Serial, MPI STUBS), small sizes,
+#      no GPU steps: what CI runs (ctest gpu.check_host), so that the script
+#      and its decks are tested on every commit.
+#
+# Tolerances: on the host backend the /kk styles are bitwise the CPU styles
+# up to summation order (1e-12, as in CI). On the GPU nvcc contracts
+# multiply-adds into FMAs (its default; g++ for x86-64 emits none) and the
+# math library differs: 1e-10 relative to the largest value for forces,
+# stress, energies and states (--tol), while the broken-bond sets and the
+# damage must still be identical.
+set -uo pipefail
+HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd -P)
+REPO=$(cd "$HERE/.." && pwd -P)
+MODE=gpu LMP="" OUTD=${OUT:-$REPO/gpu-check-out} BUDGET=400 SIZES=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --host) MODE=host ;;
+    --lmp) LMP=$2; shift ;;
+    --out) OUTD=$2; shift ;;
+    --budget) BUDGET=$2; shift ;;
+    --sizes) SIZES=$2; shift ;;
+    *) echo "gpu-check.sh: unknown option '$1' (allowed: --host --lmp PATH --out DIR --budget S --sizes LIST)" >&2; exit 2 ;;
+  esac
+  shift
+done
+T0=$(date +%s)
+elapsed() { echo $(( $(date +%s) - T0 )); }
+mkdir -p "$OUTD"
+OUTD=$(cd "$OUTD" && pwd -P)
+WORK=$(mktemp -d /tmp/tlsph-gpu-check.XXXXXX)
+say() { printf 'gpu-check.sh [%4ds] %s\n' "$(elapsed)" "$*" >&2; }
+fail=0
+
+# --- 1. the machine --------------------------------------------------------
+{
+  echo "# gpu-check.sh $(date -u +%Y-%m-%dT%H:%MZ), mode $MODE, checkout $(git -C "$REPO" describe --always --dirty 2>/dev/null || echo '?')"
+  echo "## machine"; uname -a; nproc; free -g | head -2
+  echo "glibc $(getconf GNU_LIBC_VERSION 2>/dev/null)"
+  python3 -c 'import sys, numpy; print("python", sys.version.split()[0], "numpy", numpy.__version__)' 2>&1
+} > "$OUTD/env.txt"
+if [ "$MODE" = gpu ]; then
+  BUNDLE="$REPO/gpu-bundle/tlsph-gpu-bundle.tar.xz"
+  [ -f "$BUNDLE" ] || { echo "gpu-check.sh: no $BUNDLE: run 'make gpu-bundle' on the build machine first" >&2; exit 2; }
+  tar -C "$WORK" -xJf "$BUNDLE"
+  B="$WORK/tlsph-gpu"
+  LMP=${LMP:-$B/bin/lmp}
+  cat "$B/MANIFEST" >> "$OUTD/env.txt"
+  need_glibc=$(sed -n 's/^glibc_min //p' "$B/MANIFEST")
+  have_glibc=$(getconf GNU_LIBC_VERSION | awk '{print $2}')
+  if [ "$(printf '%s\n%s\n' "$need_glibc" "$have_glibc" | sort -V | head -n1)" != "$need_glibc" ]; then
+    echo "gpu-check.sh: this machine's glibc is $have_glibc, the bundle needs $need_glibc or newer: build on the machine with gpu-bundle/tlsph-gpu-sources.tar.xz (fallback-build.sh), then --lmp" >&2
+    exit 3
+  fi
+  if ! command -v nvidia-smi >/dev/null; then
+    echo "gpu-check.sh: no nvidia-smi: no NVIDIA driver on this machine" >&2; exit 3
+  fi
+  { echo "## nvidia-smi"; nvidia-smi; nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv; } >> "$OUTD/env.txt" 2>&1
+  need_drv=$(sed -n 's/^driver_min //p' "$B/MANIFEST")
+  have_drv=$(nvidia-smi --query-gpu=driver_version --format=csv,noheader | head -n1 | cut -d. -f1)
+  if [ -z "$have_drv" ] || [ "$have_drv" -lt "$need_drv" ]; then
+    echo "gpu-check.sh: driver ${have_drv:-none}, the bundle's CUDA runtime needs R$need_drv or newer" >&2; exit 3
+  fi
+  KFLAGS=(-k on g 1); TOL=1e-10; GPU=(--gpu)
+  [ -n "$SIZES" ] || SIZES="0.25 1 4 16"
+else
+  LMP=${LMP:-$REPO/gpu-bundle/host/bin/lmp}
+  [ -x "$LMP" ] || { echo "gpu-check.sh: no host twin $LMP: make gpu-bundle-host" >&2; exit 2; }
+  KFLAGS=(-k on t 1); TOL=1e-12; GPU=()
+  [ -n "$SIZES" ] || SIZES="0.0005 0.002"
+fi
+{ echo "## lmp -h (head)"; "$LMP" -h 2>&1 | sed -n '1,/^Installed packages/p' | grep -E 'LAMMPS|KOKKOS|OS:|Compiler|C\+\+|Accelerator' ; "$LMP" -h 2>&1 | sed -n '/^Installed packages/,/^$/p' | head -5; } >> "$OUTD/env.txt"
+say "machine checked: $MODE, lmp $LMP"
+
+# --- 2. the /kk tests ------------------------------------------------------
+: > "$OUTD/tests.txt"
+for c in forces restart damage transfers; do
+  mkdir -p "$WORK/t_$c"
+  say "test $c"
+  if python3 "$REPO/unittest/kokkos/check_kokkos.py" --lmp "$LMP" --case "$c" --workdir "$WORK/t_$c" \
+       --max-ranks 1 --tol "$TOL" "${GPU[@]}" > "$WORK/t_$c.txt" 2>&1; then
+    r=passed
+  else
+    r=FAILED; fail=1
+  fi
+  { echo "### $c: $r"; cat "$WORK/t_$c.txt"; echo; } >> "$OUTD/tests.txt"
+  say "test $c: $r"
+done
+
+# --- 3. speed --------------------------------------------------------------
+echo "size_M,natoms,newton,nsteps,loop_s,ns_per_particle_step,rebuild_steps,rebuild_loop_s,ms_per_rebuild,status" > "$OUTD/speed.csv"
+for m in $SIZES; do
+  n=$(python3 -c "print(max(4, round(($m * 1e6) ** (1.0 / 3.0))))")
+  for newton in off on; do
+    if [ "$(elapsed)" -ge "$BUDGET" ]; then
+      echo "$m,,$newton,,,,,,,skipped (budget ${BUDGET}s spent)" >> "$OUTD/speed.csv"
+      continue
+    fi
+    tag="speed_${m}M_$newton"
+    say "speed $m M particles (n = $n), newton $newton"
+    ns=100; [ "$MODE" = host ] && ns=10
+    (cd "$WORK" && timeout $((BUDGET + 60 - $(elapsed))) "$LMP" "${KFLAGS[@]}" -sf kk \
+       -pk kokkos newton "$newton" neigh full comm device -in "$REPO/bench/in.gpu" \
+       -var n "$n" -var nsteps "$ns" -var nrebuild 5 -log "$tag.log" -screen none) > /dev/null 2>&1
+    st=$?
+    python3 - "$WORK/$tag.log" "$m" "$newton" "$st" >> "$OUTD/speed.csv" <<'PARSE'
+import re, sys
+log, m, newton, st = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+try:
+    s = open(log).read()
+except OSError:
+    s = ""
+loops = [(float(a), int(b), int(c)) for a, b, c in
+         re.findall(r"^Loop time of (\S+) on \d+ procs for (\d+) steps with (\d+) atoms", s, re.M)]
+if st != 0 or len(loops) != 3:
+    err = re.findall(r"^ERROR.*$", s, re.M)
+    print("%s,,%s,,,,,,,FAILED (exit %d%s)" % (m, newton, st, ": " + err[0].replace(",", ";") if err else ""))
+    sys.exit(0)
+(_, _, nat), (t, ns, _), (tr, nr, _) = loops
+per = t / (nat * ns) * 1e9
+reb = (tr - t / ns * nr) / nr * 1e3
+print("%s,%d,%s,%d,%.4f,%.3f,%d,%.4f,%.2f,ok" % (m, nat, newton, ns, t, per, nr, tr, reb))
+PARSE
+    tail -n1 "$OUTD/speed.csv" | grep -q ',ok$' || fail=1
+  done
+done
+
+# --- 4. bandwidth ----------------------------------------------------------
+if [ "$MODE" = gpu ]; then
+  "$B/bin/gpu_bandwidth" > "$OUTD/bandwidth.txt" 2>&1 || fail=1
+else
+  echo "no GPU (host twin): bandwidth not measured" > "$OUTD/bandwidth.txt"
+fi
+
+# --- summary ---------------------------------------------------------------
+python3 - "$OUTD" "$MODE" "$(elapsed)" "$fail" <<'SUMMARY' > "$OUTD/summary.md"
+import csv, os, re, sys
+d, mode, secs, fail = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4]
+print("# gpu-check.sh summary (%s, %s s)\n" % (mode, secs))
+env = open(os.path.join(d, "env.txt")).read()
+for k in ("commit", "glibc_min", "driver_min"):
+    m = re.search(r"^%s (.*)$" % k, env, re.M)
+    if m:
+        print("- %s: %s" % (k, m.group(1)))
+print("\n## tests\n")
+for m in re.finditer(r"^### (\S+): (\S+)$", open(os.path.join(d, "tests.txt")).read(), re.M):
+    print("- %s: %s" % (m.group(1), m.group(2)))
+print("\n## speed (3D tlsph/damage/kk, FP64)\n")
+print("| M particles | atoms | newton | ns / particle-step | ms / rebuild | status |")
+print("|---|---|---|---|---|---|")
+for r in csv.DictReader(open(os.path.join(d, "speed.csv"))):
+    print("| %s | %s | %s | %s | %s | %s |" % (r["size_M"], r["natoms"], r["newton"],
+          r["ns_per_particle_step"], r["ms_per_rebuild"], r["status"]))
+print("\n## bandwidth\n")
+for line in open(os.path.join(d, "bandwidth.txt")):
+    print("    " + line.rstrip())
+print("\nverdict: %s" % ("FAILED" if fail != "0" else "all passed"))
+SUMMARY
+(cd "$WORK" && find . -name '*.log' | tar -cf - -T - | xz -6 > "$OUTD/logs.tar.xz")
+cat "$OUTD/summary.md"
+rm -rf "$WORK"
+exit $fail
