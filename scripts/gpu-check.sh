@@ -15,7 +15,8 @@
 #      the CPU styles and back, damage (a shortened crack-branching run: the
 #      same broken-bond set and damage as the CPU style, energies), transfers
 #      (an ordinary step copies nothing between host and device: the atom
-#      style's DualView ledger) (tests.txt)
+#      style's DualView ledger), cache (the bond cache built on the GPU equals
+#      the host build, every rebuild compared) (tests.txt)
 #   3. speed: 3D tlsph/damage/kk, FP64, bench/in.gpu at about 0.25, 1, 4 and
 #      16 M particles, newton on and off: ns per particle-step of the
 #      ordinary steps, and the time of one neighbor rebuild (bond cache
@@ -97,12 +98,12 @@ else
   KFLAGS=(-k on t 1); TOL=1e-12; GPU=()
   [ -n "$SIZES" ] || SIZES="0.0005 0.002"
 fi
-{ echo "## lmp -h (head)"; "$LMP" -h 2>&1 | sed -n '1,/^Installed packages/p' | grep -E 'LAMMPS|KOKKOS|OS:|Compiler|C\+\+|Accelerator' ; "$LMP" -h 2>&1 | sed -n '/^Installed packages/,/^$/p' | head -5; } >> "$OUTD/env.txt"
+{ echo "## lmp -h (head)"; "$LMP" -h 2>&1 | sed -n '1,/^Installed packages/p' | grep -E 'LAMMPS|KOKKOS|OS:|Compiler|C\+\+|Accelerator' ; "$LMP" -h 2>&1 | grep -A3 '^Installed packages' | grep -v '^ *$'; } >> "$OUTD/env.txt"
 say "machine checked: $MODE, lmp $LMP"
 
 # --- 2. the /kk tests ------------------------------------------------------
 : > "$OUTD/tests.txt"
-for c in forces restart damage transfers; do
+for c in forces restart damage transfers cache; do
   mkdir -p "$WORK/t_$c"
   say "test $c"
   if python3 "$REPO/unittest/kokkos/check_kokkos.py" --lmp "$LMP" --case "$c" --workdir "$WORK/t_$c" \

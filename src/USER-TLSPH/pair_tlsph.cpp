@@ -710,10 +710,18 @@ void PairTLSPH::set_reference_images()
   }
 }
 
-/* The bond cache in the lean layout (pair_tlsph.h). The full records are
-   made per particle in a scratch buffer -- the corrections work on them --
-   and only what the step reads is kept. */
-void PairTLSPH::build_bond_cache()
+/* The partners of the bond cache (pair_tlsph.h), without the bond math:
+   x0c, and per local particle its partner indices lean.j and slots lean.k
+   in the cache's order (the intact bonds that lead their pair, then the
+   other intact ones, then, for correction_from_all_partners, the broken
+   ones, which only enter the correction), nlead, nbond and bond_start (the
+   broken ones are counted by bond_start only). Also the checks that need
+   LAMMPS's map and images (a partner beyond the ghost cutoff, bond vectors
+   no longer given by the minimum image) and, in shepard_max/shepard_i, the
+   largest Shepard sum (kernel_scale sum_j V_j W_ij over the intact bonds,
+   self included). The bond math (particle_bonds, tlsph_particle.h) follows
+   on the host (build_bond_cache) or on a Kokkos device (the /kk styles). */
+void PairTLSPH::resolve_bonds(double &shepard_max, int &shepard_i)
 {
   const int nlocal = atom->nlocal;
   double **x0 = atom->x0;
@@ -743,36 +751,17 @@ void PairTLSPH::build_bond_cache()
 
   const double kernel_scale = (dim == 2) ? 1.0 / thickness : 1.0;
   int nb = 0;
-  std::vector<double> vj(bonds->maxpartner);
-  std::vector<BondCache> scratch(bonds->maxpartner);
-  // Shepard sum kernel_scale * sum_j V_j W_ij (self included): about 1 inside
-  // the body when the volumes match the kernel normalisation
-  double shepard_max = 0.0;
-  int shepard_i = -1;
-  int degraded = 0, nostress = 0;
-  // right after the partner search: the particles whose gradient cannot be
-  // formed (check_reference_partners); the one with the smallest ID is named
-  const bool check_now = bonds->check_pending;
-  tagint bad_tag = 0;
-  int bad_np = 0;
-  double bad_vol = 0.0, bad_dmin = 0.0;
+  shepard_max = 0.0;
+  shepard_i = -1;
   // largest |X_ij (minimum image of x0) - (x0c_j - x0c_i)| relative to |X_ij|
   double image_error = 0.0;
   tagint image_i = 0;
   for (int i = 0; i < nlocal; i++) {
     bond_start[i] = nb;
     const int np = bonds->npartner[i];
-    if (np > (int) vj.size()) {
-      vj.resize(np);
-      scratch.resize(np);
-    }
     double shepard = kernel_scale * vfrac[i] * kernel.value(0.0);
     tagint *partner = bonds->partner[i];
     int *state = bonds->state[i];
-    // intact bonds first, then (for correction_from_all_partners) the broken
-    // ones, which only enter the correction matrix
-    // and the intact ones in two groups: first those that lead their pair
-    // (partner a ghost or a local particle after i), then the others
     int n = 0;
     for (int pass = 0; pass < 3; pass++) {
       if (pass == 2 && !correction_from_all_partners) break;
@@ -797,70 +786,102 @@ void PairTLSPH::build_bond_cache()
         const double e = sqrt(((X[0] - Xm[0]) * (X[0] - Xm[0]) + (X[1] - Xm[1]) * (X[1] - Xm[1]) +
                                (X[2] - Xm[2]) * (X[2] - Xm[2])) / dot3(Xm, Xm));
         if (!(e <= image_error)) image_error = e, image_i = tag[i];
-        make_bond(kernel, X, vfrac[i], vfrac[j], j, k, scratch[n], kernel_scale);
         if (pass < 2) shepard += kernel_scale * vfrac[j] * kernel.value(sqrt(dot3(X, X)));
-        vj[n] = vfrac[j];
+        lean.j[nb + n] = j;
+        lean.k[nb + n] = k;
         n++;
       }
       if (pass == 0) nlead[i] = n;
       if (pass == 1) nbond[i] = n;
     }
-    const int nall = n;
-    n = nbond[i];
     if (shepard > shepard_max || shepard_i < 0) shepard_max = shepard, shepard_i = i;
+    nb += n;
+  }
+  bond_start[nlocal] = nb;
+  if (image_error > 1.0e-8)
+    error->one(FLERR, "pair tlsph: particle {} has moved by half a periodic box length or more "
+                      "since its reference position was set (its bond vectors no longer follow "
+                      "from the minimum image): not supported; enlarge the periodic box",
+               image_i);
+}
+
+/* The bond cache in the lean layout (pair_tlsph.h): the partners
+   (resolve_bonds), then the bond math of each particle on the host
+   (particle_bonds: the full records are made in a scratch buffer -- the
+   corrections work on them -- and only what the step reads is kept). */
+void PairTLSPH::build_bond_cache()
+{
+  const int nlocal = atom->nlocal;
+  double *vfrac = atom->vfrac;
+  tagint *tag = atom->tag;
+  double shepard_max;
+  int shepard_i;
+  resolve_bonds(shepard_max, shepard_i);
+
+  const double kernel_scale = (dim == 2) ? 1.0 / thickness : 1.0;
+  std::vector<double> vj(bonds->maxpartner);
+  std::vector<BondCache> scratch(bonds->maxpartner);
+  int degraded = 0, nostress = 0;
+  // right after the partner search: the particles whose gradient cannot be
+  // formed (check_reference_partners); the one with the smallest ID is named
+  const bool check_now = bonds->check_pending;
+  tagint bad_tag = 0;
+  int bad_np = 0;
+  double bad_vol = 0.0, bad_dmin = 0.0;
+  const X0Rows x0rows{x0c[0]};
+  for (int i = 0; i < nlocal; i++) {
+    const int s = bond_start[i], nall = bond_start[i + 1] - s;
+    if (nall > (int) vj.size()) {
+      vj.resize(nall);
+      scratch.resize(nall);
+    }
     BondCache *b = scratch.data();
     double *fz = (correction_from_all_partners && bonds->nfrozen) ? bonds->frozen[i] : nullptr;
-    if (fz && fz[0] == 1.0) {
-      // correction frozen at setup: independent of which broken partners
-      // are still present as ghosts
-      for (int k = 0; k < bonds->nfrozen; k++) Q[i][k] = fz[1 + k];
-      apply_particle(i, b, nall, vj.data());
-    } else {
-      const int achieved = correct_particle(i, b, nall, vj.data());
-      if (achieved < order) degraded++;
-      if (achieved == 0) {
-        nostress++;
-        if (check_now && (bad_tag == 0 || tag[i] < bad_tag)) {
-          bad_tag = tag[i];
-          bad_np = np;
-          bad_vol = vfrac[i];
-          bad_dmin = 0.0;
-          for (int m = 0; m < nall; m++) {
-            const double r = sqrt(dot3(b[m].X, b[m].X));
-            if (m == 0 || r < bad_dmin) bad_dmin = r;
-          }
+    // a correction frozen at setup: independent of which broken partners
+    // are still present as ghosts
+    const double *frozen = (fz && fz[0] == 1.0) ? fz + 1 : nullptr;
+    int achieved;
+    if (dim == 2)
+      achieved = (order == 1)
+          ? TLSPH::particle_bonds<2, 1>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, vfrac,
+                                        kernel, kernel_scale, frozen, b, vj.data(), Q[i], sumg[i],
+                                        lean.g + 2 * (bigint) s, lean.w + 2 * (bigint) s)
+          : TLSPH::particle_bonds<2, 2>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, vfrac,
+                                        kernel, kernel_scale, frozen, b, vj.data(), Q[i], sumg[i],
+                                        lean.g + 2 * (bigint) s, lean.w + 2 * (bigint) s);
+    else
+      achieved = (order == 1)
+          ? TLSPH::particle_bonds<3, 1>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, vfrac,
+                                        kernel, kernel_scale, frozen, b, vj.data(), Q[i], sumg[i],
+                                        lean.g + 3 * (bigint) s, lean.w + 2 * (bigint) s)
+          : TLSPH::particle_bonds<3, 2>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, vfrac,
+                                        kernel, kernel_scale, frozen, b, vj.data(), Q[i], sumg[i],
+                                        lean.g + 3 * (bigint) s, lean.w + 2 * (bigint) s);
+    if (frozen) continue;
+    if (achieved < order) degraded++;
+    if (achieved == 0) {
+      nostress++;
+      if (check_now && (bad_tag == 0 || tag[i] < bad_tag)) {
+        bad_tag = tag[i];
+        bad_np = bonds->npartner[i];
+        bad_vol = vfrac[i];
+        bad_dmin = 0.0;
+        for (int m = 0; m < nall; m++) {
+          const double r = sqrt(dot3(b[m].X, b[m].X));
+          if (m == 0 || r < bad_dmin) bad_dmin = r;
         }
       }
-      if (fz) {
-        for (int k = 0; k < bonds->nfrozen; k++) fz[1 + k] = Q[i][k];
-        fz[0] = 1.0;
-      }
     }
-    if (nall > n) {
-      // broken bonds entered the correction only: sum_j g_ij runs over intact ones
-      sumg[i][0] = sumg[i][1] = sumg[i][2] = 0.0;
-      for (int m = 0; m < n; m++)
-        for (int d = 0; d < 3; d++) sumg[i][d] += b[m].g[d];
+    if (fz) {
+      for (int k = 0; k < bonds->nfrozen; k++) fz[1 + k] = Q[i][k];
+      fz[0] = 1.0;
     }
-    for (int m = 0; m < nall; m++) {
-      lean.j[nb + m] = b[m].j;
-      for (int d = 0; d < dim; d++) lean.g[(bigint) dim * (nb + m) + d] = b[m].g[d];
-      lean.w[2 * (bigint) (nb + m)] = b[m].wv;
-      lean.w[2 * (bigint) (nb + m) + 1] = b[m].whg;
-      lean.k[nb + m] = b[m].k;
-    }
-    nb += nall;
   }
   ndegraded = degraded;
   if (check_now) {
     bonds->check_pending = 0;
     check_reference_partners(nostress, bad_tag, bad_np, bad_vol, bad_dmin);
   }
-  if (image_error > 1.0e-8)
-    error->one(FLERR, "pair tlsph: particle {} has moved by half a periodic box length or more "
-                      "since its reference position was set (its bond vectors no longer follow "
-                      "from the minimum image): not supported; enlarge the periodic box",
-               image_i);
   /* The kernel normalisation: sum_j V_j W_ij (the particle itself included,
      V in the kernel's measure: per thickness in 2D) is the SPH interpolant
      of 1, about 1 inside a body whose volumes tile it -- within a few % on a
@@ -918,7 +939,6 @@ void PairTLSPH::build_bond_cache()
       if (comm->me == 0) error->warning(FLERR, "pair tlsph: {} ({})", what, fix);
     }
   }
-  bond_start[nlocal] = nb;
   cache_version++;
 }
 

@@ -198,7 +198,9 @@ class PairTLSPH : public Pair {
   int ncache_max, nstart_max;
   int cache_version = 0;    // +1 at every build_bond_cache() (the /kk styles copy it then)
   double **x0c;       // reference positions consistent with the images of x (nmax)
-  void build_bond_cache();
+  // (virtual: the /kk styles build it on their device, pair_tlsph_kokkos.h)
+  virtual void build_bond_cache();
+  void resolve_bonds(double &shepard_max, int &shepard_i);
   void check_reference_partners(int nbad, tagint bad_tag, int bad_np, double bad_vol,
                                 double bad_dmin);
   void set_reference_images();

@@ -356,6 +356,50 @@ TLSPH_INLINE void apply_correction(Bond *b, int nb, const double *Vj, const Cubi
   }
 }
 
+/* The bond math of particle i at a bond cache build (PairTLSPH::build_bond_cache
+   on the host, PairTLSPHKokkosT::build_bond_cache_device on a Kokkos device):
+   from its partners j[0..nall) (slots k[0..nall); the nb intact bonds first,
+   then broken ones that only enter the correction) and the reference
+   positions x0c(j) (consistent with the periodic images), the records
+   b[0..nall) and partner volumes Vj[0..nall) (scratch), the correction Q,
+   s = sum of g over the intact bonds, and the step's lean data: g (DIM per
+   bond) and the weights w (wv, whg per bond). frozen: a correction to apply
+   instead of computing one (nullptr: compute it). Returns the order achieved
+   (ORDER when frozen). */
+template <int DIM, int ORDER, class X0>
+TLSPH_INLINE int particle_bonds(int i, const int *j, const int *k, int nall, int nb, const X0 &x0c,
+                                const double *vfrac, const CubicSpline &kernel,
+                                double kernel_scale, const double *frozen, Bond *b, double *Vj,
+                                double *Q, double *sumg, double *g, double *w)
+{
+  const double *xi = x0c(i);
+  for (int m = 0; m < nall; m++) {
+    const double *xj = x0c(j[m]);
+    const double X[3] = {xj[0] - xi[0], xj[1] - xi[1], DIM == 2 ? 0.0 : xj[2] - xi[2]};
+    make_bond(kernel, X, vfrac[i], vfrac[j[m]], j[m], k[m], b[m], kernel_scale);
+    Vj[m] = vfrac[j[m]];
+  }
+  int achieved = ORDER;
+  if (frozen) {
+    for (int q = 0; q < DIM * Basis<DIM, ORDER>::size; q++) Q[q] = frozen[q];
+    apply_correction<DIM, ORDER>(b, nall, Vj, kernel, Q, sumg);
+  } else {
+    achieved = correction<DIM, ORDER>(b, nall, Vj, kernel, Q, sumg);
+  }
+  if (nall > nb) {
+    // broken bonds entered the correction only: sum_j g_ij runs over intact ones
+    sumg[0] = sumg[1] = sumg[2] = 0.0;
+    for (int m = 0; m < nb; m++)
+      for (int d = 0; d < 3; d++) sumg[d] += b[m].g[d];
+  }
+  for (int m = 0; m < nall; m++) {
+    for (int d = 0; d < DIM; d++) g[DIM * m + d] = b[m].g[d];
+    w[2 * m] = b[m].wv;
+    w[2 * m + 1] = b[m].whg;
+  }
+  return achieved;
+}
+
 /* F_i = I + sum_j (u_j - u_i) (x) g_ij, with u = x - X and the reference
    bond vector X_ij taken from the bond. x(j) returns x_j. */
 template <int DIM, class Rows, class Bonds>

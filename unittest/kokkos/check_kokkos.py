@@ -40,6 +40,10 @@ not a silent fall-back to the CPU style.
                    on 2 (GPU-aware MPI), with thermo output equal to the plain
                    host backend's. A fix without a Kokkos variant must be
                    reported (negative control).
+  --case cache     the bond cache built on the device equals the host build
+                   (TLSPH_KK_CACHE_CHECK=1 compares every device build with a
+                   host build; a neighbor build every step; 2D both styles,
+                   3D damage; 1 and 2 ranks).
   --case plugin    (with --plugin) `plugin list` after `plugin load` of the /kk
                    plugin: every style of the CPU plugin (--cpu-plugin, loaded
                    alone in another run) and the /kk pair and fix styles.
@@ -557,13 +561,56 @@ def case_transfers(args):
     return problems
 
 
+def case_cache(args):
+    """the bond cache built on the device (partners resolved on the host, the
+    bond math in a Kokkos kernel) equals the host build: with
+    TLSPH_KK_CACHE_CHECK=1 every device build is compared with a host build of
+    the same cache (g, w, Q, sum g, frozen corrections; the run stops on a
+    difference above 1e-12, --tol on a GPU). A neighbor build every step:
+    in.transfers (2D, tlsph/kk and tlsph/damage/kk with pre-crack and frozen
+    corrections) and bench/in.gpu (3D tlsph/damage/kk), 1 and 2 ranks (atoms
+    migrate). Each run must report device builds."""
+    problems = []
+    env = {"TLSPH_KK_CACHE_CHECK": "1" if TOL == 1e-12 else repr(TOL)}
+    flags = ["-pk", "kokkos", "newton", "off", "neigh", "full"]
+    runs = [("cache_tlsph", os.path.join(HERE, "in.transfers"),
+             ["-var", "style", "tlsph", "-var", "check", "no", "-var", "n1", "5", "-var", "n2", "5"]),
+            ("cache_damage", os.path.join(HERE, "in.transfers"),
+             ["-var", "style", "damage", "-var", "check", "no", "-var", "n1", "5", "-var", "n2", "5"]),
+            ("cache_3d", os.path.join(HERE, "..", "..", "bench", "in.gpu"),
+             ["-var", "n", "10", "-var", "nsteps", "5", "-var", "nrebuild", "5"])]
+    for tag, inp, extra in runs:
+        for np in (1, 2):
+            if np > args.max_ranks:
+                continue
+            t = "%s_np%d" % (tag, np)
+            out, p = lmp_run(args, t, inp, flags + extra + (["-pk", "kokkos", "gpu/aware", "on"]
+                                                            if np > 1 else []),
+                             True, np=np, env_extra=env)
+            problems += ["%s: %s" % (t, q) for q in p]
+            rep = re.findall(r"^tlsph/kk bond cache: (\d+) device builds, (\d+) host builds, the "
+                             r"device builds checked against the host build: largest relative "
+                             r"difference (\S+)$", out, re.M)
+            dev = sum(int(r[0]) for r in rep)
+            worst = max((float(r[2]) for r in rep), default=math.inf)
+            print("%-18s %d device-built bond caches, each equal to the host build within %.3g "
+                  "(relative) %s" % (t, dev, worst, "ok" if dev > 5 and worst <= TOL else "FAIL"))
+            if dev <= 5:
+                problems.append("%s: only %d device builds (a neighbor build every step expected)"
+                                % (t, dev))
+            if not (worst <= TOL):
+                problems.append("%s: device-built bond cache differs from the host build by %.3g"
+                                % (t, worst))
+    return problems
+
+
 def main():
     global TOL, DAMAGE_XTOL
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--lmp", required=True, help="the KOKKOS-enabled lmp (build-lammps-plugin.sh kokkos)")
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--workdir", required=True)
-    ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart", "damage", "plugin", "transfers"])
+    ap.add_argument("--case", required=True, choices=["forces", "mpi", "restart", "damage", "plugin", "transfers", "cache"])
     ap.add_argument("--gpu", action="store_true", help="the /kk runs on GPU 0 (-k on g 1); "
                     "scripts/gpu-check.sh")
     ap.add_argument("--tol", type=float, default=TOL, help="relative tolerance of the /kk "
@@ -594,7 +641,7 @@ def main():
         TOL = args.tol
     problems = {"forces": case_forces, "mpi": case_mpi, "restart": case_restart,
                 "damage": case_damage, "plugin": case_plugin,
-                "transfers": case_transfers}[args.case](args)
+                "transfers": case_transfers, "cache": case_cache}[args.case](args)
     if problems:
         print("FAILED:\n  " + "\n  ".join(problems))
         return 1

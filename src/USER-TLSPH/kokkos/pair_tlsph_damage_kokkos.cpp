@@ -49,11 +49,10 @@ template <class DeviceType> void PairTLSPHDamageKokkos<DeviceType>::init_style()
   upload(d_down, this->stretch_down.data(), (size_t) ntp * ntp, "tlsph/damage/kk:down");
 }
 
-/* the bond cache, plus each particle's bond count at setup and room for
-   every bond to break in one step */
-template <class DeviceType> void PairTLSPHDamageKokkos<DeviceType>::upload_bond_cache()
+/* with every bond cache on the device (uploaded or built there): each
+   particle's bond count at setup and room for every bond to break in one step */
+template <class DeviceType> void PairTLSPHDamageKokkos<DeviceType>::after_cache_build()
 {
-  KK::upload_bond_cache();
   const int nlocal = this->atom->nlocal;
   upload(d_nintact0, this->bonds->nintact0, nlocal, "tlsph/damage/kk:nintact0");
   const size_t nb = this->bond_start[nlocal];

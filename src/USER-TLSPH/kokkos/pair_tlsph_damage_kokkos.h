@@ -63,7 +63,7 @@ class PairTLSPHDamageKokkos : public PairTLSPHKokkosT<DeviceType, PairTLSPHDamag
 
  protected:
   int deformation_step() override;
-  void upload_bond_cache() override;
+  void after_cache_build() override;
   int comm_stage_now() const override { return this->comm_stage == 1 ? 1 : 0; }
   dview &comm_view(int stage) override { return stage == 1 ? d_phi : this->d_pk; }
   double *comm_host(int stage) override { return stage == 1 ? this->phi : this->pk[0]; }

@@ -26,7 +26,9 @@
 #include <Kokkos_ScatterView.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <map>
+#include <type_traits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -142,6 +144,190 @@ void PairTLSPHKokkosT<DeviceType, Base>::upload_bond_cache()
   upload(d_sumg, sumg[0], (size_t) nlocal * 3, "tlsph/kk:sumg");
   upload(d_x0c, x0c[0], (size_t) nall * 3, "tlsph/kk:x0c");
   uploaded_version = cache_version;
+  after_cache_build();
+}
+
+/* ----------------------------------------------------------------------
+   The bond cache after a neighbor build, built on the device: the partners
+   are resolved on the host (Base::resolve_bonds: the tag -> index map, the
+   closest images and the order of the bonds, which need LAMMPS's host map;
+   x0c), and only their indices and slots (8 bytes per bond), the counts and
+   x0c go to the device, where the bond math runs (TLSPH::particle_bonds,
+   the same function as the host build: the records, the corrections, g,
+   the weights, Q and sum g). Before, the whole cache went up: j, g, w, k
+   (40-48 bytes per bond) and Q, sum g. Frozen corrections (tlsph/damage,
+   policy setup) go up with the particles and come back when new ones were
+   computed. The host build remains where the device one does not apply:
+   the first build after the partner search (its checks name particles),
+   and with TLSPH_KK_HOST_CACHE=1 (for comparisons). TLSPH_KK_CACHE_CHECK=1
+   builds both and compares them (check_device_cache).
+   Afterwards the host copies of g, w, Q and sum g are not current (no host
+   code of the /kk styles reads them); j, k, the counts and x0c are.
+------------------------------------------------------------------------- */
+
+namespace {
+bool env_flag(const char *name)
+{
+  const char *e = std::getenv(name);
+  return e != nullptr && *e != '\0' && std::string(e) != "0";
+}
+}    // namespace
+
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::build_bond_cache()
+{
+  if (this->bonds->check_pending || env_flag("TLSPH_KK_HOST_CACHE")) {
+    Base::build_bond_cache();    // uploaded whole by upload_bond_cache()
+    host_builds++;
+    return;
+  }
+  double shepard_max;
+  int shepard_i;
+  this->resolve_bonds(shepard_max, shepard_i);
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  const size_t nb = bond_start[nlocal];
+  const int qs = correction_size();
+  upload(d_start, bond_start, nlocal + 1, "tlsph/kk:bond_start");
+  upload(d_nbond, nbond, nlocal, "tlsph/kk:nbond");
+  upload(d_nlead, nlead, nlocal, "tlsph/kk:nlead");
+  upload(d_bj, lean.j, nb, "tlsph/kk:bond_j");
+  upload(d_bk, lean.k, nb, "tlsph/kk:bond_k");
+  upload(d_x0c, x0c[0], (size_t) nall * 3, "tlsph/kk:x0c");
+  auto grow = [](auto &v, size_t n, const char *name) {
+    using V = typename std::remove_reference<decltype(v)>::type;
+    if (v.extent(0) < n)
+      v = V(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name)), n + n / 8 + 16);
+  };
+  grow(d_bg, nb * dim, "tlsph/kk:bond_g");
+  grow(d_bw, nb * 2, "tlsph/kk:bond_w");
+  grow(d_Q, (size_t) nlocal * qs, "tlsph/kk:Q");
+  grow(d_sumg, (size_t) nlocal * 3, "tlsph/kk:sumg");
+  const bool has_frozen = this->correction_from_all_partners && this->bonds->nfrozen;
+  const int nq = has_frozen ? this->bonds->nfrozen : 0;
+  if (has_frozen) upload(d_frozen, this->bonds->frozen[0], (size_t) nlocal * (1 + nq), "tlsph/kk:frozen");
+  static_cast<AtomVecPeriKokkos *>(atom->avec)->k_vfrac.template sync<DeviceType>();
+
+  // the particles in chunks, so that the records of a chunk's bonds fit a
+  // scratch view (about 512 MB on a GPU, 16 MB on a host backend)
+  int maxn = 1;
+  for (int i = 0; i < nlocal; i++) maxn = MAX(maxn, bond_start[i + 1] - bond_start[i]);
+  const size_t per = (size_t) maxn * (sizeof(TLSPH::Bond) + sizeof(double));
+  const size_t budget = (execution_space == Device && !TLSPHKK::device_model()) ? (512u << 20) : (16u << 20);
+  const int chunk = (int) MAX((size_t) 1, MIN((size_t) MAX(nlocal, 1), budget / per));
+  if (d_scratch.extent(0) < (size_t) chunk * maxn) {
+    d_scratch = Kokkos::View<TLSPH::Bond *, DeviceType>(
+        Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("tlsph/kk:bond_scratch")),
+        (size_t) chunk * maxn);
+    d_vjs = dview(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("tlsph/kk:vj_scratch")),
+                  (size_t) chunk * maxn);
+  }
+  const double kscale = (dim == 2) ? 1.0 / this->thickness : 1.0;
+  long long counts[2] = {0, 0};    // degraded, new frozen corrections
+  for (int first = 0; first < nlocal; first += chunk) {
+    const int last = MIN(nlocal, first + chunk);
+    long long c;
+    if (dim == 2)
+      c = (order == 1) ? bond_math_chunk<2, 1>(first, last, maxn, nq, has_frozen, kscale)
+                       : bond_math_chunk<2, 2>(first, last, maxn, nq, has_frozen, kscale);
+    else
+      c = (order == 1) ? bond_math_chunk<3, 1>(first, last, maxn, nq, has_frozen, kscale)
+                       : bond_math_chunk<3, 2>(first, last, maxn, nq, has_frozen, kscale);
+    counts[0] += c & 0xffffffffLL;    // (bond_math_chunk: degraded + 2^32 new frozen)
+    counts[1] += c >> 32;
+  }
+  this->ndegraded = (int) counts[0];
+  if (has_frozen && counts[1] > 0)
+    download(this->bonds->frozen[0], d_frozen, 0, (size_t) nlocal * (1 + nq));
+  this->cache_version++;
+  uploaded_version = this->cache_version;
+  after_cache_build();
+  device_builds++;
+  if (env_flag("TLSPH_KK_CACHE_CHECK")) check_device_cache();
+}
+
+// returns the particles of [first, last) whose correction fell back to a
+// lower order plus 2^32 times those whose frozen correction was made now
+template <class DeviceType, class Base>
+template <int DIM, int ORDER>
+long long PairTLSPHKokkosT<DeviceType, Base>::bond_math_chunk(int first, int last, int maxn, int nq,
+                                                        bool has_frozen, double kscale)
+{
+  const int *start = d_start.data(), *nbd = d_nbond.data(), *bj = d_bj.data(), *bk = d_bk.data();
+  const TLSPH::StridedRows x0{d_x0c.data(), 3};
+  const double *vfrac =
+      static_cast<AtomVecPeriKokkos *>(atom->avec)->k_vfrac.template view<DeviceType>().data();
+  double *bg = d_bg.data(), *bw = d_bw.data(), *Q = d_Q.data(), *sumg = d_sumg.data();
+  double *frozen = has_frozen ? d_frozen.data() : nullptr;
+  TLSPH::Bond *scratch = d_scratch.data();
+  double *vjs = d_vjs.data();
+  const TLSPH::CubicSpline kern = kernel;
+  const int qs = correction_size();
+  long long count = 0;
+  Kokkos::parallel_reduce(
+      "tlsph/kk:bond_math", Kokkos::RangePolicy<DeviceType>(first, last),
+      KOKKOS_LAMBDA(const int i, long long &acc) {
+        const int s = start[i], nall = start[i + 1] - s;
+        double *fz = frozen ? frozen + (size_t) i * (1 + nq) : nullptr;
+        const double *fq = (fz && fz[0] == 1.0) ? fz + 1 : nullptr;
+        const int a = TLSPH::particle_bonds<DIM, ORDER>(
+            i, bj + s, bk + s, nall, nbd[i], x0, vfrac, kern, kscale, fq,
+            scratch + (size_t) (i - first) * maxn, vjs + (size_t) (i - first) * maxn, Q + qs * i,
+            sumg + 3 * i, bg + (size_t) DIM * s, bw + 2 * (size_t) s);
+        if (fq) return;
+        if (a < ORDER) acc += 1;
+        if (fz) {
+          for (int q = 0; q < nq; q++) fz[1 + q] = Q[qs * i + q];
+          fz[0] = 1.0;
+          acc += 1LL << 32;
+        }
+      },
+      count);
+  return count;
+}
+
+/* TLSPH_KK_CACHE_CHECK=1: the host build of the same cache, compared with
+   the device-built one value by value (j, k by construction; g, w, Q, sum g
+   within 1e-12 relative to each array's largest value, or the value of
+   TLSPH_KK_CACHE_CHECK when it is below 1: bitwise on a host backend, FMA
+   round-off on a GPU); a difference stops the run. The host
+   build is then the current one (re-uploaded, as without the device build). */
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::check_device_cache()
+{
+  const int nlocal = atom->nlocal;
+  const size_t nb = bond_start[nlocal];
+  std::vector<double> g(nb * dim), w(nb * 2), q((size_t) nlocal * correction_size()), sg((size_t) nlocal * 3);
+  download(g.data(), d_bg, 0, g.size());
+  download(w.data(), d_bw, 0, w.size());
+  download(q.data(), d_Q, 0, q.size());
+  download(sg.data(), d_sumg, 0, sg.size());
+  const bool has_frozen = this->correction_from_all_partners && this->bonds->nfrozen;
+  std::vector<double> fz;
+  if (has_frozen) fz.assign(this->bonds->frozen[0], this->bonds->frozen[0] + (size_t) nlocal * (1 + this->bonds->nfrozen));
+  Base::build_bond_cache();
+  double worst = 0.0;
+  auto cmp = [&](const std::vector<double> &a, const double *b) {
+    double scale = 0.0, diff = 0.0;
+    for (size_t k = 0; k < a.size(); k++) {
+      scale = MAX(scale, fabs(b[k]));
+      diff = MAX(diff, fabs(a[k] - b[k]));
+      if (!std::isfinite(a[k]) || !std::isfinite(b[k])) diff = INFINITY;
+    }
+    worst = MAX(worst, scale > 0.0 ? diff / scale : diff);
+  };
+  cmp(g, lean.g);
+  cmp(w, lean.w);
+  cmp(q, Q[0]);
+  cmp(sg, sumg[0]);
+  if (has_frozen) cmp(fz, this->bonds->frozen[0]);
+  double all;
+  MPI_Allreduce(&worst, &all, 1, MPI_DOUBLE, MPI_MAX, this->world);
+  cache_check_worst = MAX(cache_check_worst, all);
+  // TLSPH_KK_CACHE_CHECK=1: 1e-12; a value below 1 is the tolerance itself
+  const double tol = std::atof(std::getenv("TLSPH_KK_CACHE_CHECK"));
+  if (!(all <= ((tol > 0.0 && tol < 1.0) ? tol : 1.0e-12)))
+    error->all(FLERR, "pair tlsph/kk: the device-built bond cache differs from the host build by "
+                      "{:.3g} (relative) at step {}", all, update->ntimestep);
 }
 
 template <class DeviceType, class Base>
@@ -551,6 +737,18 @@ void PairTLSPHKokkosT<DeviceType, Base>::report_copies(bigint nsteps)
 {
   auto *avec = dynamic_cast<AtomVecPeriKokkos *>(atom->avec);
   auto &own = TLSPHKK::copy_ledger();
+  // where the bond caches of this run were built (every rank builds at
+  // every neighbor build: rank 0's counts)
+  if (comm->me == 0) {
+    std::string line = fmt::format("tlsph/kk bond cache: {} device builds, {} host builds",
+                                   device_builds, host_builds);
+    if (env_flag("TLSPH_KK_CACHE_CHECK"))
+      line += fmt::format(", the device builds checked against the host build: largest "
+                          "relative difference {:.3g}", cache_check_worst);
+    utils::logmesg(this->lmp, line + "\n");
+  }
+  device_builds = host_builds = 0;
+  cache_check_worst = 0.0;
   if (!on_device()) {
     if (avec) avec->ledger_clear_counts();
     own.clear();

@@ -93,6 +93,8 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void force_kernel_scatter(double *vir);
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void force_pass(double *vir);
   template <int DIM, int ORDER> void dispatch_force(int hg, int visc, int vir, double *v);
+  template <int DIM, int ORDER> long long bond_math_chunk(int first, int last, int maxn, int nq,
+                                                    bool has_frozen, double kscale);
 
  protected:
   using Base::alpha;
@@ -156,6 +158,18 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   bigint host_step;
   void grow_device();
   virtual void upload_bond_cache();
+  // after every bond cache that reaches the device (tlsph/damage/kk: its extras)
+  virtual void after_cache_build() {}
+  // the bond cache after a neighbor build: partners resolved on the host
+  // (Base::resolve_bonds: LAMMPS's map and images), the bond math on the
+  // device (bond_math_chunk); the host build where the device one does not
+  // apply (see the .cpp)
+  void build_bond_cache() override;
+  Kokkos::View<TLSPH::Bond *, DeviceType> d_scratch;    // bond records of a chunk of particles
+  dview d_vjs, d_frozen;
+  int device_builds = 0, host_builds = 0;    // bond cache builds of this run, by where
+  double cache_check_worst = 0.0;            // TLSPH_KK_CACHE_CHECK: largest difference
+  void check_device_cache();
   // pass (1), returns the first unstable particle or -1; tlsph/damage/kk breaks bonds in it
   virtual int deformation_step();
   // between passes (1) and (2): tlsph/damage/kk updates the damage and alpha_i
