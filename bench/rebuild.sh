@@ -49,21 +49,26 @@ for line in open(runs):
     (_, _, nat), (t, s1, _), (tr, s2, _) = [(float(a), int(b), int(c)) for a, b, c in loops]
     step = t / s1
     reb = (tr - step * s2) / s2
-    by.setdefault(mode, []).append((step, reb, up / s2, nat))
+    parts = re.findall(r"^tlsph/kk bond cache: .*partners resolved on the host (\S+) ms, "
+                       r"uploads (\S+) ms, bond math (\S+) ms", s, re.M)
+    br = [float(x) for x in parts[-1]] if parts else [float("nan")] * 3
+    by.setdefault(mode, []).append((step, reb, up / s2, nat, br))
 nat = by["device"][0][3]
 print("# Neighbor rebuild against ordinary step, /kk styles, Kokkos host backend\n")
 print("Made by `bash bench/rebuild.sh` at commit %s: bench/in.gpu (3D tlsph/damage/kk, FP64), "
       "n = %s (%d particles), %s ordinary steps and %s steps with a neighbor build each, "
       "1 rank, Kokkos Serial (make kokkos LAMMPS, -O2), device model (copy ledger), "
       "alternating, %s repeats, medians. CPU: %s.\n" % (commit, n, nat, ns, nr, rep, cpu or "?"))
-print("| bond cache built | ms per ordinary step | ms per rebuild (over a step) | rebuild / step | MB to the device per rebuild |")
-print("|---|---|---|---|---|")
+print("| bond cache built | ms per ordinary step | ms per rebuild (over a step) | rebuild / step | MB to the device per rebuild | of the rebuild: partners resolved on the host / uploads / bond math kernel [ms] |")
+print("|---|---|---|---|---|---|")
 for mode, label in (("device", "on the device (partners on the host)"), ("host", "on the host, uploaded (TLSPH_KK_HOST_CACHE=1)")):
     v = by[mode]
     st = statistics.median(x[0] for x in v) * 1e3
     rb = statistics.median(x[1] for x in v) * 1e3
     mb = statistics.median(x[2] for x in v)
-    print("| %s | %.2f | %.2f | %.2f | %.3f |" % (label, st, rb, rb / st, mb))
+    br = [statistics.median(x[4][k] for x in v) for k in range(3)]
+    parts = "%.2f / %.2f / %.2f" % tuple(br) if mode == "device" else "(host build, not split)"
+    print("| %s | %.2f | %.2f | %.2f | %.3f | %s |" % (label, st, rb, rb / st, mb, parts))
 print("\nThe rebuild time includes LAMMPS's own neighbor build, exchange and borders "
       "(on the host in this LAMMPS version for a fix with per-atom data), the partner "
       "resolution on the host (tag -> index map, closest images, order) and, for the "

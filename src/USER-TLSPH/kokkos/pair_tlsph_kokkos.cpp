@@ -183,7 +183,9 @@ void PairTLSPHKokkosT<DeviceType, Base>::build_bond_cache()
   }
   double shepard_max;
   int shepard_i;
+  const double t0 = MPI_Wtime();
   this->resolve_bonds(shepard_max, shepard_i);
+  const double t1 = MPI_Wtime();
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   const size_t nb = bond_start[nlocal];
   const int qs = correction_size();
@@ -206,6 +208,8 @@ void PairTLSPHKokkosT<DeviceType, Base>::build_bond_cache()
   const int nq = has_frozen ? this->bonds->nfrozen : 0;
   if (has_frozen) upload(d_frozen, this->bonds->frozen[0], (size_t) nlocal * (1 + nq), "tlsph/kk:frozen");
   static_cast<AtomVecPeriKokkos *>(atom->avec)->k_vfrac.template sync<DeviceType>();
+  Kokkos::fence();
+  const double t2 = MPI_Wtime();
 
   // the particles in chunks, so that the records of a chunk's bonds fit a
   // scratch view (about 512 MB on a GPU, 16 MB on a host backend)
@@ -238,6 +242,10 @@ void PairTLSPHKokkosT<DeviceType, Base>::build_bond_cache()
   this->ndegraded = (int) counts[0];
   if (has_frozen && counts[1] > 0)
     download(this->bonds->frozen[0], d_frozen, 0, (size_t) nlocal * (1 + nq));
+  Kokkos::fence();
+  build_time[0] += t1 - t0;
+  build_time[1] += t2 - t1;
+  build_time[2] += MPI_Wtime() - t2;
   this->cache_version++;
   uploaded_version = this->cache_version;
   after_cache_build();
@@ -742,6 +750,11 @@ void PairTLSPHKokkosT<DeviceType, Base>::report_copies(bigint nsteps)
   if (comm->me == 0) {
     std::string line = fmt::format("tlsph/kk bond cache: {} device builds, {} host builds",
                                    device_builds, host_builds);
+    if (device_builds)
+      line += fmt::format(" (per device build on rank 0: partners resolved on the host {:.3f} ms, "
+                          "uploads {:.3f} ms, bond math {:.3f} ms)",
+                          1e3 * build_time[0] / device_builds, 1e3 * build_time[1] / device_builds,
+                          1e3 * build_time[2] / device_builds);
     if (env_flag("TLSPH_KK_CACHE_CHECK"))
       line += fmt::format(", the device builds checked against the host build: largest "
                           "relative difference {:.3g}", cache_check_worst);
@@ -749,6 +762,7 @@ void PairTLSPHKokkosT<DeviceType, Base>::report_copies(bigint nsteps)
   }
   device_builds = host_builds = 0;
   cache_check_worst = 0.0;
+  build_time[0] = build_time[1] = build_time[2] = 0.0;
   if (!on_device()) {
     if (avec) avec->ledger_clear_counts();
     own.clear();

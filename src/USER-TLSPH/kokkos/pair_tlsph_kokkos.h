@@ -168,6 +168,7 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   Kokkos::View<TLSPH::Bond *, DeviceType> d_scratch;    // bond records of a chunk of particles
   dview d_vjs, d_frozen;
   int device_builds = 0, host_builds = 0;    // bond cache builds of this run, by where
+  double build_time[3] = {0.0, 0.0, 0.0};    // device builds: resolve, uploads, bond math [s]
   double cache_check_worst = 0.0;            // TLSPH_KK_CACHE_CHECK: largest difference
   void check_device_cache();
   // pass (1), returns the first unstable particle or -1; tlsph/damage/kk breaks bonds in it
