@@ -719,9 +719,10 @@ void PairTLSPH::set_reference_images()
    LAMMPS's map and images (a partner beyond the ghost cutoff, bond vectors
    no longer given by the minimum image) and, in shepard_max/shepard_i, the
    largest Shepard sum (kernel_scale sum_j V_j W_ij over the intact bonds,
-   self included). The bond math (particle_bonds, tlsph_particle.h) follows
+   self included), when shepard is set (only its check right after the
+   partner search reads it). The bond math (particle_bonds, tlsph_particle.h) follows
    on the host (build_bond_cache) or on a Kokkos device (the /kk styles). */
-void PairTLSPH::resolve_bonds(double &shepard_max, int &shepard_i)
+void PairTLSPH::resolve_bonds(bool shepard_sum, double &shepard_max, int &shepard_i)
 {
   const int nlocal = atom->nlocal;
   double **x0 = atom->x0;
@@ -786,7 +787,8 @@ void PairTLSPH::resolve_bonds(double &shepard_max, int &shepard_i)
         const double e = sqrt(((X[0] - Xm[0]) * (X[0] - Xm[0]) + (X[1] - Xm[1]) * (X[1] - Xm[1]) +
                                (X[2] - Xm[2]) * (X[2] - Xm[2])) / dot3(Xm, Xm));
         if (!(e <= image_error)) image_error = e, image_i = tag[i];
-        if (pass < 2) shepard += kernel_scale * vfrac[j] * kernel.value(sqrt(dot3(X, X)));
+        if (shepard_sum && pass < 2)
+          shepard += kernel_scale * vfrac[j] * kernel.value(sqrt(dot3(X, X)));
         lean.j[nb + n] = j;
         lean.k[nb + n] = k;
         n++;
@@ -816,7 +818,7 @@ void PairTLSPH::build_bond_cache()
   tagint *tag = atom->tag;
   double shepard_max;
   int shepard_i;
-  resolve_bonds(shepard_max, shepard_i);
+  resolve_bonds(bonds->check_pending != 0, shepard_max, shepard_i);
 
   const double kernel_scale = (dim == 2) ? 1.0 / thickness : 1.0;
   std::vector<double> vj(bonds->maxpartner);

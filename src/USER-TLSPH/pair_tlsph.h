@@ -200,7 +200,7 @@ class PairTLSPH : public Pair {
   double **x0c;       // reference positions consistent with the images of x (nmax)
   // (virtual: the /kk styles build it on their device, pair_tlsph_kokkos.h)
   virtual void build_bond_cache();
-  void resolve_bonds(double &shepard_max, int &shepard_i);
+  void resolve_bonds(bool shepard_sum, double &shepard_max, int &shepard_i);
   void check_reference_partners(int nbad, tagint bad_tag, int bad_np, double bad_vol,
                                 double bad_dmin);
   void set_reference_images();

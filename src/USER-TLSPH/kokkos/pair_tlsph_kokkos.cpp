@@ -126,7 +126,8 @@ void PairTLSPHKokkosT<DeviceType, Base>::grow_device()
   make(d_fvisc, 3, "tlsph/kk:f_visc");
 }
 
-/* the bond cache (built on the host by PairTLSPH::build_bond_cache) and the
+/* a bond cache built on the host (PairTLSPH::build_bond_cache: the first
+   build after the partner search, TLSPH_KK_HOST_CACHE=1) and the
    per-particle data it fixes until the next neighbor build, to the device */
 template <class DeviceType, class Base>
 void PairTLSPHKokkosT<DeviceType, Base>::upload_bond_cache()
@@ -184,7 +185,7 @@ void PairTLSPHKokkosT<DeviceType, Base>::build_bond_cache()
   double shepard_max;
   int shepard_i;
   const double t0 = MPI_Wtime();
-  this->resolve_bonds(shepard_max, shepard_i);
+  this->resolve_bonds(false, shepard_max, shepard_i);    // (no check: no Shepard sums)
   const double t1 = MPI_Wtime();
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   const size_t nb = bond_start[nlocal];
@@ -591,8 +592,9 @@ void PairTLSPHKokkosT<DeviceType, Base>::compute(int eflag, int vflag)
   host_current = 0;
   auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
 
-  // after a neighbor build the bond cache is rebuilt on the host (as tlsph
-  // does) from x, x0, vfrac, type and the bond fix, then copied to the device
+  // after a neighbor build the bond cache is rebuilt (build_bond_cache: the
+  // partners resolved on the host from x, x0, vfrac, type and the bond fix,
+  // the bond math on the device)
   if (bonds->rebuild) {
     host_sync(X_MASK | TYPE_MASK | TAG_MASK);
     host_sync(EXTENDED_MASK | VFRAC_MASK | X0_MASK);

@@ -7,8 +7,10 @@
    particles and call the same physics headers (tlsph_particle.h through
    PairTLSPH::stress_row and TLSPH::particle_force_bonds). Per-particle
    state (F, P, packed rows, psi, ...) and the lean bond arrays live in
-   device views between steps; the bond cache is built on the host after
-   each neighbor build (as tlsph does) and copied to the device then.
+   device views between steps. After each neighbor build the partners are
+   resolved on the host and the bond math of the cache runs on the device
+   (build_bond_cache); an ordinary step copies nothing between host and
+   device (tlsph_kk_copies.h, ctest kokkos.transfers).
    The force pass uses the gather form of the stress term (every particle
    sums its whole force from its bonds, no scatter, no atomics), i.e. the
    form that tlsph uses with newton_pair off; forces equal tlsph's to
