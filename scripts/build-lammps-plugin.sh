@@ -589,9 +589,11 @@ SYNC_KOKKOS
       EXTRA_PKGS+=(-D CMAKE_CXX_COMPILER="$SRC_TREE/lib/kokkos/bin/nvcc_wrapper"
                    -D CUDAToolkit_ROOT="$CUDA_HOME"
                    -D "CMAKE_INSTALL_RPATH=\$ORIGIN/../lib;$CUDA_HOME/lib64")
-      # bundle-cuda: the CUDA runtime linked statically (Kokkos links the
-      # library CUDA_CUDART names: libcudart.so by default)
-      [ "$BUNDLE" = 1 ] && EXTRA_PKGS+=(-D "CUDA_CUDART=$CUDA_HOME/lib64/libcudart_static.a")
+      # bundle-cuda: the CUDA runtime linked statically (Kokkos links
+      # CUDA::cudart, whose library is CMake's CUDA_cudart_LIBRARY, or
+      # CUDA_CUDART with CMake < 3.17: libcudart.so by default)
+      [ "$BUNDLE" = 1 ] && EXTRA_PKGS+=(-D "CUDA_cudart_LIBRARY=$CUDA_HOME/lib64/libcudart_static.a"
+                                        -D "CUDA_CUDART=$CUDA_HOME/lib64/libcudart_static.a")
       printf '%s\n' "$NVCC_VERSION" > "$PREFIX/nvcc-version.txt"
     fi
     # our files: updated by content, the list of the last sync kept
