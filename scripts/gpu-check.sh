@@ -59,6 +59,7 @@ elapsed() { echo $(( $(date +%s) - T0 )); }
 mkdir -p "$OUTD"
 OUTD=$(cd "$OUTD" && pwd -P)
 WORK=$(mktemp -d /tmp/tlsph-gpu-check.XXXXXX)
+trap 'rm -rf "$WORK"' EXIT
 say() { printf 'gpu-check.sh [%4ds] %s\n' "$(elapsed)" "$*" >&2; }
 fail=0
 
@@ -67,7 +68,8 @@ fail=0
   echo "# gpu-check.sh $(date -u +%Y-%m-%dT%H:%MZ), mode $MODE, checkout $(git -C "$REPO" describe --always --dirty 2>/dev/null || echo '?')"
   echo "## machine"; uname -a; nproc; free -g | head -2
   echo "glibc $(getconf GNU_LIBC_VERSION 2>/dev/null)"
-  python3 -c 'import sys, numpy; print("python", sys.version.split()[0], "numpy", numpy.__version__)' 2>&1
+  python3 -c 'import sys; print("python", sys.version.split()[0])'
+  python3 -c 'import numpy; print("numpy", numpy.__version__)' 2>/dev/null || echo "numpy: not installed (not needed)"
 } > "$OUTD/env.txt"
 if [ "$MODE" = gpu ]; then
   BUNDLE="$REPO/gpu-bundle/tlsph-gpu-bundle.tar.xz"
@@ -191,5 +193,4 @@ print("\nverdict: %s" % ("FAILED" if fail != "0" else "all passed"))
 SUMMARY
 (cd "$WORK" && find . -name '*.log' | tar -cf - -T - | xz -6 > "$OUTD/logs.tar.xz")
 cat "$OUTD/summary.md"
-rm -rf "$WORK"
 exit $fail
