@@ -25,6 +25,8 @@
 #      it, are listed as skipped (speed.csv)
 #   4. the device's copy bandwidth (bin/gpu_bandwidth), the roofline ceiling
 #      (bandwidth.txt)
+#   3a. the thesis's 3D Kalthoff-Winkler deck with -sf kk: time to solution
+#      against the 2 CPU cores of the build machine (kalthoff3d.txt)
 #   summary.md: the tables; logs.tar.xz: every LAMMPS log. At most 8 files,
 #   in DIR (default: $OUT when set, else gpu-check-out/).
 #
@@ -119,6 +121,41 @@ for c in forces restart damage transfers cache; do
   say "test $c: $r"
 done
 
+# --- 3a. the thesis's 3D Kalthoff-Winkler deck: time to solution ---------
+# examples/kalthoff-3d at the thesis resolution (dx = 1 mm) with the thesis's
+# model, -sf kk, to its end (100 us): wall time, against 943 s measured on
+# the 2 shared cores of the build machine (examples/kalthoff-3d/README.md);
+# the copy report of the run (its fixes without a Kokkos variant: fix move
+# of the impactor, fix halt, fix ave/time). Host twin: dx 2.5 mm to 2 us.
+K3D=(-var model thesis -var tdump 1 -var tfull 0 -var timg 0 -var out k3d)
+[ "$MODE" = host ] && K3D+=(-var dx 0.0025 -var tend 2e-6)
+if [ "$(elapsed)" -lt $((BUDGET - 150)) ]; then
+  say "the 3D Kalthoff-Winkler deck (thesis model, -sf kk)"
+  t1=$(date +%s.%N)
+  (cd "$WORK" && timeout 150 "$LMP" "${KFLAGS[@]}" -sf kk -pk kokkos newton off neigh full comm device \
+     -in "$REPO/examples/kalthoff-3d/in.kalthoff-3d" "${K3D[@]}" -log kalthoff3d.log -screen none) > /dev/null 2>&1
+  st=$?
+  t2=$(date +%s.%N)
+  python3 - "$WORK/kalthoff3d.log" "$st" "$t1" "$t2" > "$OUTD/kalthoff3d.txt" <<'K3DPARSE'
+import re, sys
+log, st, t1, t2 = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])
+s = open(log).read() if log else ""
+loops = re.findall(r"^Loop time of (\S+) on \d+ procs for (\d+) steps with (\d+) atoms", s, re.M)
+print("3D Kalthoff-Winkler, thesis model, -sf kk: exit %d, wall %.1f s (LAMMPS start to end)" % (st, t2 - t1))
+if loops:
+    t, n, nat = float(loops[-1][0]), int(loops[-1][1]), int(loops[-1][2])
+    print("main run: %d steps, %d particles, loop time %.2f s, %.2f ns per particle-step"
+          % (n, nat, t, t / max(1, n * nat) * 1e9))
+print("reference: 943 s wall on the 2 shared cores of the build machine (2 MPI ranks, "
+      "examples/kalthoff-3d/README.md)")
+for line in re.findall(r"^tlsph/kk (?:copies: (?:host-fix|comm-host|host-code|atom) .*|bond cache: .*)$", s, re.M)[-8:]:
+    print(line)
+K3DPARSE
+  [ "$st" = 0 ] || { [ "$st" = 124 ] && echo "cut at 150 s" >> "$OUTD/kalthoff3d.txt" || fail=1; }
+else
+  echo "3D Kalthoff-Winkler: skipped (budget)" > "$OUTD/kalthoff3d.txt"
+fi
+
 # --- 3. speed --------------------------------------------------------------
 echo "size_M,natoms,newton,nsteps,loop_s,ns_per_particle_step,rebuild_steps,rebuild_loop_s,ms_per_rebuild,status" > "$OUTD/speed.csv"
 for m in $SIZES; do
@@ -186,6 +223,9 @@ print("|---|---|---|---|---|---|")
 for r in csv.DictReader(open(os.path.join(d, "speed.csv"))):
     print("| %s | %s | %s | %s | %s | %s |" % (r["size_M"], r["natoms"], r["newton"],
           r["ns_per_particle_step"], r["ms_per_rebuild"], r["status"]))
+print("\n## 3D Kalthoff-Winkler, time to solution\n")
+for line in open(os.path.join(d, "kalthoff3d.txt")):
+    print("    " + line.rstrip())
 print("\n## bandwidth\n")
 for line in open(os.path.join(d, "bandwidth.txt")):
     print("    " + line.rstrip())
