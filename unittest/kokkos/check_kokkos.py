@@ -550,7 +550,7 @@ def case_transfers(args):
     problems += p
     if runs:
         per = per_step_copies(runs, n1, n2)
-        seen = [n for n, c in per.items() if n.startswith("host-fix extra/addforce")
+        seen = [n for n, c in per.items() if n.startswith("host-fix extra/addforce:")
                 and c[1] >= 1]
         print("control (fix addforce, no Kokkos variant): %s" %
               ("reported: " + ", ".join("%s %s" % (n, per[n][:2]) for n in seen) if seen

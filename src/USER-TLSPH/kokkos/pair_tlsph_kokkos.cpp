@@ -732,9 +732,11 @@ void PairTLSPHKokkosT<DeviceType, Base>::host_modified(unsigned int mask)
      own LABEL      this style's and its fixes' own arrays (upload, download)
      host-code F..  host code of ours reading (to host) or changing (to
                     device) atom fields (device model: tlsph_kk_copies.h)
-     host-fix ID/STYLE  a fix without a Kokkos variant that LAMMPS runs on
-                    the host every step: its datamask_read goes to the
-                    host, its datamask_modify back (one each per hook call)
+     host-fix ID/STYLE:masks|no-masks  a fix without a Kokkos variant that
+                    LAMMPS runs on the host every step: its datamask_read
+                    goes to the host, its datamask_modify back (counted as
+                    one each way per hook call; no-masks: it declares no
+                    atom data, see there)
      comm-host NAME LAMMPS's forward (x) or reverse (f) communication on the
                     host (-pk kokkos comm host/no, or no GPU-aware MPI)
    On a host backend without the device model (one memory, every call names
@@ -807,11 +809,15 @@ void PairTLSPHKokkosT<DeviceType, Base>::report_copies(bigint nsteps)
       if ((this->modify->fmask[f] & END_OF_STEP) && fix->nevery > 0)
         per_step += 1.0 / fix->nevery;
       if (per_step == 0.0) continue;
-      // counted whatever its masks say: a host fix whose masks are empty
-      // (many fixes of this LAMMPS version declare none) reads stale data
-      // on a GPU instead of copying, which is no better
+      // counted as one copy each way per hook call whatever its masks say
+      // (an upper bound), and named with them: a host fix that declares no
+      // atom data (many fixes of this LAMMPS version declare none) makes
+      // LAMMPS copy nothing; if it reads per-atom data anyway, it reads them
+      // stale on a GPU, which is no better
       const double n = per_step * nsteps;
-      add(fmt::format("host-fix {}/{}", fix->id, fix->style), n, n, 0.0);
+      const bool masked = fix->datamask_read != EMPTY_MASK || fix->datamask_modify != EMPTY_MASK;
+      add(fmt::format("host-fix {}/{}:{}", fix->id, fix->style, masked ? "masks" : "no-masks"), n,
+          n, 0.0);
     }
   }
   // LAMMPS's communication of x (forward, every step) and of f (reverse,
