@@ -3,9 +3,9 @@
 # step, on the Kokkos host backend (make kokkos LAMMPS, Serial, 1 rank):
 # bench/in.gpu (3D tlsph/damage/kk, FP64) at n^3 particles, its ordinary
 # steps and its steps with a neighbor build each (check no), with the bond
-# cache built on the device (the default: partners resolved on the host,
-# bond math in a Kokkos kernel) and on the host (TLSPH_KK_HOST_CACHE=1: the
-# whole cache built on the host and uploaded), alternating, REPEAT times,
+# cache built on the device (the default: the partners resolved and the
+# bond math run in Kokkos kernels; x0c set on the host) and on the host
+# (TLSPH_KK_HOST_CACHE=1: the whole cache built on the host and uploaded), alternating, REPEAT times,
 # medians; in the device model (TLSPH_KK_DEVICE_MODEL=1), so that the copy
 # ledger gives the bytes each rebuild moves to the device. Writes
 # bench/rebuild.md (doc/kokkos-cuda.md cites it).
@@ -49,7 +49,7 @@ for line in open(runs):
     (_, _, nat), (t, s1, _), (tr, s2, _) = [(float(a), int(b), int(c)) for a, b, c in loops]
     step = t / s1
     reb = (tr - step * s2) / s2
-    parts = re.findall(r"^tlsph/kk bond cache: .*partners resolved on the host (\S+) ms, "
+    parts = re.findall(r"^tlsph/kk bond cache: .*partners resolved (\S+) ms, .*; "
                        r"uploads (\S+) ms, bond math (\S+) ms", s, re.M)
     br = [float(x) for x in parts[-1]] if parts else [float("nan")] * 3
     by.setdefault(mode, []).append((step, reb, up / s2, nat, br))
@@ -59,9 +59,9 @@ print("Made by `bash bench/rebuild.sh` at commit %s: bench/in.gpu (3D tlsph/dama
       "n = %s (%d particles), %s ordinary steps and %s steps with a neighbor build each, "
       "1 rank, Kokkos Serial (make kokkos LAMMPS, -O2), device model (copy ledger), "
       "alternating, %s repeats, medians. CPU: %s.\n" % (commit, n, nat, ns, nr, rep, cpu or "?"))
-print("| bond cache built | ms per ordinary step | ms per rebuild (over a step) | rebuild / step | MB to the device per rebuild | of the rebuild: partners resolved on the host / uploads / bond math kernel [ms] |")
+print("| bond cache built | ms per ordinary step | ms per rebuild (over a step) | rebuild / step | MB to the device per rebuild | of the rebuild: partner resolution / uploads / bond math kernel [ms] |")
 print("|---|---|---|---|---|---|")
-for mode, label in (("device", "on the device (partners on the host)"), ("host", "on the host, uploaded (TLSPH_KK_HOST_CACHE=1)")):
+for mode, label in (("device", "on the device (Kokkos kernels)"), ("host", "on the host, uploaded (TLSPH_KK_HOST_CACHE=1)")):
     v = by[mode]
     st = statistics.median(x[0] for x in v) * 1e3
     rb = statistics.median(x[1] for x in v) * 1e3
@@ -70,10 +70,10 @@ for mode, label in (("device", "on the device (partners on the host)"), ("host",
     parts = "%.2f / %.2f / %.2f" % tuple(br) if mode == "device" else "(host build, not split)"
     print("| %s | %.2f | %.2f | %.2f | %.3f | %s |" % (label, st, rb, rb / st, mb, parts))
 print("\nThe rebuild time includes LAMMPS's own neighbor build, exchange and borders "
-      "(on the host in this LAMMPS version for a fix with per-atom data), the partner "
-      "resolution on the host (tag -> index map, closest images, order) and, for the "
-      "device build, the bond math kernel; on a host backend the copies are memcpy's. "
-      "On a GPU the ordinary step is far cheaper, so the ratio is larger there "
-      "(scripts/gpu-check.sh measures it).")
+      "(on the host in this LAMMPS version for a fix with per-atom data) and x0c (host); "
+      "with the device build the partner resolution (tag -> index map, closest images, "
+      "order) and the bond math are Kokkos kernels, here on the host backend (Serial, one "
+      "core), whose copies are memcpy's. On a GPU the ordinary step is far cheaper, so the "
+      "ratio is larger there (scripts/gpu-check.sh measures it).")
 PY
 cat "$HERE/rebuild.md"

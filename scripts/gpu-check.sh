@@ -20,7 +20,7 @@
 #   3. speed: 3D tlsph/damage/kk, FP64, bench/in.gpu at about 0.25, 1, 4 and
 #      16 M particles, newton on and off: ns per particle-step of the
 #      ordinary steps, and the time of one neighbor rebuild (bond cache
-#      built on the GPU from partners resolved on the host); sizes left when
+#      built on the GPU from the bond fix's partner rows); sizes left when
 #      the budget (330 s from the start, --budget) is spent, or a run cut at
 #      it, are listed as skipped (speed.csv)
 #   4. the device's copy bandwidth (bin/gpu_bandwidth), the roofline ceiling

@@ -562,10 +562,11 @@ def case_transfers(args):
 
 
 def case_cache(args):
-    """the bond cache built on the device (partners resolved on the host, the
-    bond math in a Kokkos kernel) equals the host build: with
+    """the bond cache built on the device (the partners resolved and the bond
+    math run in Kokkos kernels) equals the host build: with
     TLSPH_KK_CACHE_CHECK=1 every device build is compared with a host build of
-    the same cache (g, w, Q, sum g, frozen corrections; the run stops on a
+    the same cache (the partner indices, slots, row starts and counts
+    exactly; g, w, Q, sum g, frozen corrections; the run stops on a
     difference above 1e-12, --tol on a GPU). A neighbor build every step:
     in.transfers (2D, tlsph/kk and tlsph/damage/kk with pre-crack and frozen
     corrections) and bench/in.gpu (3D tlsph/damage/kk), 1 and 2 ranks (atoms

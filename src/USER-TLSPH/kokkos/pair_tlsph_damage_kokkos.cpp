@@ -51,11 +51,10 @@ template <class DeviceType> void PairTLSPHDamageKokkos<DeviceType>::init_style()
 
 /* with every bond cache on the device (uploaded or built there): each
    particle's bond count at setup and room for every bond to break in one step */
-template <class DeviceType> void PairTLSPHDamageKokkos<DeviceType>::after_cache_build()
+template <class DeviceType> void PairTLSPHDamageKokkos<DeviceType>::after_cache_build(size_t nb)
 {
   const int nlocal = this->atom->nlocal;
   upload(d_nintact0, this->bonds->nintact0, nlocal, "tlsph/damage/kk:nintact0");
-  const size_t nb = this->bond_start[nlocal];
   if (d_broken_i.extent(0) < nb + 1) {
     d_broken_i = iview(Kokkos::view_alloc(Kokkos::WithoutInitializing, "tlsph/damage/kk:broken_i"),
                        nb + nb / 8 + 16);
@@ -124,7 +123,7 @@ int PairTLSPHDamageKokkos<DeviceType>::break_kernel()
                                            sc[ti] < sc[tj] ? sc[ti] : sc[tj], du)) {
             const int e = Kokkos::atomic_fetch_add(&count(), 1);
             broken_i(e) = i;
-            broken_m(e) = m;
+            broken_m(e) = bk_[m];    // the bond's slot in the bond fix's rows
             for (int d = 0; d < DIM; d++) sumg[3 * i + d] -= bg_[DIM * m + d];
             TLSPH::drop_bond<DIM>(bj_, bg_, bw_, bk_, m, nlead_i, n);
             continue;
@@ -158,29 +157,19 @@ int PairTLSPHDamageKokkos<DeviceType>::break_kernel()
   return bad < nlocal ? bad : -1;
 }
 
-/* the kernel's breaks on the host copy of the bond cache and on the bond
-   fix, in each particle's order (a thread records its particle's breaks in
-   increasing entries: a stable sort by particle restores that order) */
+/* the kernel's breaks on the bond fix: each broken bond's state, by its
+   particle and slot (the device holds the bond cache; the host copy of it
+   is not kept: no host code of the /kk styles reads it between builds, and
+   sync_host() brings the bond counts for the computes) */
 template <class DeviceType>
 template <int DIM>
 void PairTLSPHDamageKokkos<DeviceType>::replay_breaks(int n)
 {
-  std::vector<int> bi(n), bm(n), order(n);
+  std::vector<int> bi(n), bk(n);
   download(bi.data(), d_broken_i, 0, n);
-  download(bm.data(), d_broken_m, 0, n);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return bi[a] < bi[b]; });
-  auto &L = this->lean;
-  for (const int e : order) {
-    const int i = bi[e], m = bm[e];
-    const bigint s = this->bond_start[i];
-    this->bonds->state[i][L.k[s + m]] = FixTLSPHBonds::BROKEN;
-    this->nbroken_local++;
-    for (int d = 0; d < DIM; d++) this->sumg[i][d] -= L.g[DIM * (s + m) + d];
-    int nbi = this->nbond[i];
-    TLSPH::drop_bond<DIM>(L.j + s, L.g + DIM * s, L.w + 2 * s, L.k + s, m, this->nlead[i], nbi);
-    this->nbond[i] = nbi;
-  }
+  download(bk.data(), d_broken_m, 0, n);
+  for (int e = 0; e < n; e++) this->bonds->state[bi[e]][bk[e]] = FixTLSPHBonds::BROKEN;
+  this->nbroken_local += n;
 }
 
 template <class DeviceType>

@@ -63,7 +63,7 @@ class PairTLSPHDamageKokkos : public PairTLSPHKokkosT<DeviceType, PairTLSPHDamag
 
  protected:
   int deformation_step() override;
-  void after_cache_build() override;
+  void after_cache_build(size_t nb) override;
   int comm_stage_now() const override { return this->comm_stage == 1 ? 1 : 0; }
   dview &comm_view(int stage) override { return stage == 1 ? d_phi : this->d_pk; }
   double *comm_host(int stage) override { return stage == 1 ? this->phi : this->pk[0]; }
@@ -72,7 +72,7 @@ class PairTLSPHDamageKokkos : public PairTLSPHKokkosT<DeviceType, PairTLSPHDamag
   dview d_phi, d_mark, d_phis;          // damage, marks of damaged partners, smoothed damage
   dview d_sc, d_up, d_down;             // per type s_c; per type pair (1 +- s_c)^2
   iview d_nintact0;                     // bonds at setup (the damage's denominator)
-  iview d_broken_i, d_broken_m;         // this step's breaks: particle, slot at the time
+  iview d_broken_i, d_broken_m;         // this step's breaks: particle, slot in the bond fix
   Kokkos::View<int, DeviceType> d_nbroken;
   int damage_current;                   // 1: the host phi, phis hold this step's values
 };

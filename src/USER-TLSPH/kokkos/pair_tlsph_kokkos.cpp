@@ -18,6 +18,7 @@
 #include "force.h"
 #include "modify.h"
 #include "kokkos.h"
+#include "memory.h"
 #include "pair_tlsph_damage.h"
 #include "pair_tlsph_step.h"
 #include "update.h"
@@ -145,34 +146,215 @@ void PairTLSPHKokkosT<DeviceType, Base>::upload_bond_cache()
   upload(d_sumg, sumg[0], (size_t) nlocal * 3, "tlsph/kk:sumg");
   upload(d_x0c, x0c[0], (size_t) nall * 3, "tlsph/kk:x0c");
   uploaded_version = cache_version;
-  after_cache_build();
+  after_cache_build(nb);
 }
 
 /* ----------------------------------------------------------------------
-   The bond cache after a neighbor build, built on the device: the partners
-   are resolved on the host (Base::resolve_bonds: the tag -> index map, the
-   closest images and the order of the bonds, which need LAMMPS's host map;
-   x0c), and only their indices and slots (8 bytes per bond), the counts and
-   x0c go to the device, where the bond math runs (TLSPH::particle_bonds,
-   the same function as the host build: the records, the corrections, g,
-   the weights, Q and sum g). Before, the whole cache went up: j, g, w, k
-   (40-48 bytes per bond) and Q, sum g. Frozen corrections (tlsph/damage,
-   policy setup) go up with the particles and come back when new ones were
-   computed. The host build remains where the device one does not apply:
-   the first build after the partner search (its checks name particles),
-   and with TLSPH_KK_HOST_CACHE=1 (for comparisons). TLSPH_KK_CACHE_CHECK=1
-   builds both and compares them (check_device_cache).
-   Afterwards the host copies of g, w, Q and sum g are not current (no host
-   code of the /kk styles reads them); j, k, the counts and x0c are.
+   The bond cache after a neighbor build, built on the device: the bond
+   fix's partner rows (tags and states, 8 bytes per slot) and x0c (set on
+   the host, where a neighbor build has brought x and x0) go up, the
+   partners are resolved on the device (resolve_bonds_device: LAMMPS's map
+   and images synced to the device), and the bond math runs there
+   (TLSPH::particle_bonds, the same function as the host build: the
+   records, the corrections, g, the weights, Q and sum g). Before, the whole
+   cache went up: j, g, w, k (40-48 bytes per bond) and Q, sum g. Frozen
+   corrections (tlsph/damage, policy setup) go up with the particles and
+   come back when new ones were computed. Where the device resolution does
+   not apply (device_resolve_ok) the host resolves (Base::resolve_bonds)
+   and uploads indices and slots. The host build remains for the first
+   build after the partner search (its checks name particles) and with
+   TLSPH_KK_HOST_CACHE=1 (for comparisons). TLSPH_KK_CACHE_CHECK=1 builds
+   both and compares them (check_device_cache). The host copy of the cache
+   is then not kept (no host code of the /kk styles reads it; sync_host()
+   brings the bond counts for the computes).
 ------------------------------------------------------------------------- */
 
 namespace {
+// Atom::map on a device: the array map (map_style array)
+template <class View> struct MapLookup {
+  View map;
+  tagint max;
+  KOKKOS_INLINE_FUNCTION int operator()(tagint t) const { return (t < 0 || t > max) ? -1 : map(t); }
+};
+
 bool env_flag(const char *name)
 {
   const char *e = std::getenv(name);
   return e != nullptr && *e != '\0' && std::string(e) != "0";
 }
 }    // namespace
+
+/* The partners resolved on the device (resolve_bonds_device), where it
+   applies: an orthogonal box, LAMMPS's map as an array (atom_modify map
+   array; the hash map of this version has no device lookup we use), and
+   TLSPH_KK_HOST_RESOLVE unset (the host resolution, for comparisons). */
+template <class DeviceType, class Base>
+bool PairTLSPHKokkosT<DeviceType, Base>::device_resolve_ok() const
+{
+  return !this->domain->triclinic && atom->map_style == Atom::MAP_ARRAY &&
+      !env_flag("TLSPH_KK_HOST_RESOLVE");
+}
+
+/* Base::resolve_bonds on the device: the bond fix's partner rows (tags and
+   states, 8 bytes per slot) go up, LAMMPS's map and its list of images
+   (sametag) are synced to the device, and per local particle a count
+   kernel, a scan and a fill kernel give the partner indices and slots in
+   the cache's order (the intact bonds that lead their pair, the other
+   intact ones, then, for correction_from_all_partners, the broken ones
+   still present), nlead, nbond and the row starts, as the host does; x0c is
+   set on the host (it needs x and x0 there, which a neighbor build has
+   brought) and goes up. A partner beyond the ghost cutoff or a bond vector
+   no longer given by the minimum image sends the build back to the host
+   resolution, whose error message names the particle. Returns the number
+   of cached bonds. */
+template <class DeviceType, class Base>
+size_t PairTLSPHKokkosT<DeviceType, Base>::resolve_bonds_device()
+{
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  if (atom->nmax > this->nmax) this->grow_peratom();
+  this->set_reference_images();
+  upload(d_x0c, x0c[0], (size_t) nall * 3, "tlsph/kk:x0c");
+  const int mp = MAX(1, this->bonds->maxpartner);
+  upload(d_npartner, this->bonds->npartner, nlocal, "tlsph/kk:npartner");
+  if (this->bonds->maxpartner > 0) {
+    upload(d_ptag, this->bonds->partner[0], (size_t) nlocal * mp, "tlsph/kk:partner_tag");
+    upload(d_pstate, this->bonds->state[0], (size_t) nlocal * mp, "tlsph/kk:partner_state");
+  }
+  atomKK->k_map_array.template sync<DeviceType>();
+  atomKK->k_sametag.template sync<DeviceType>();
+  atomKK->sync(execution_space, X_MASK);
+  auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
+  avec->k_x0.template sync<DeviceType>();
+  if (d_start.extent(0) < (size_t) nlocal + 1)
+    d_start = iview(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("tlsph/kk:bond_start")),
+                    nlocal + 1 + nlocal / 8 + 16);
+  if (d_nbond.extent(0) < (size_t) nlocal) {
+    d_nbond = iview(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("tlsph/kk:nbond")),
+                    nlocal + nlocal / 8 + 16);
+    d_nlead = iview(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("tlsph/kk:nlead")),
+                    nlocal + nlocal / 8 + 16);
+  }
+
+  const int *np = d_npartner.data(), *st = d_pstate.data();
+  const tagint *pt = d_ptag.data();
+  const auto map = atomKK->k_map_array.template view<DeviceType>();
+  const auto same = atomKK->k_sametag.template view<DeviceType>();
+  const auto x = atomKK->k_x.template view<DeviceType>();
+  const auto x0 = avec->k_x0.template view<DeviceType>();
+  const double *x0cd = d_x0c.data();
+  int *start = d_start.data(), *nbd = d_nbond.data(), *nld = d_nlead.data();
+  const bool all = this->correction_from_all_partners;
+  const int INTACT = FixTLSPHBonds::INTACT, BROKEN = FixTLSPHBonds::BROKEN;
+  const int twod = (dim == 2);
+  // the partner's index, -1 when it is not on this rank (Atom::map)
+  const MapLookup<decltype(map)> lookup{map, atom->map_tag_max};
+
+  // (1) the row length of each particle; a missing intact partner is counted
+  int missing = 0;
+  Kokkos::parallel_reduce(
+      "tlsph/kk:resolve_count", Kokkos::RangePolicy<DeviceType>(0, nlocal),
+      KOKKOS_LAMBDA(const int i, int &miss) {
+        int n = 0;
+        for (int k = 0; k < np[i]; k++) {
+          const int s = st[(size_t) mp * i + k];
+          if (s == INTACT) {
+            if (lookup(pt[(size_t) mp * i + k]) < 0) miss++;
+            else n++;
+          } else if (all && s == BROKEN && lookup(pt[(size_t) mp * i + k]) >= 0) {
+            n++;
+          }
+        }
+        start[i] = n;
+      },
+      missing);
+  int nbtot = 0;
+  if (missing == 0) {
+    // (2) the row starts: an exclusive scan, the total in start[nlocal]
+    Kokkos::parallel_scan(
+        "tlsph/kk:resolve_scan", Kokkos::RangePolicy<DeviceType>(0, nlocal + 1),
+        KOKKOS_LAMBDA(const int i, int &upd, const bool final) {
+          const int c = (i < nlocal) ? start[i] : 0;
+          if (final) start[i] = upd;
+          upd += c;
+        },
+        nbtot);
+  }
+  double image_error = 0.0;
+  if (missing == 0) {
+    auto grow = [](iview &v, size_t n, const char *name) {
+      if (v.extent(0) < n)
+        v = iview(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name)), n + n / 8 + 16);
+    };
+    grow(d_bj, (size_t) nbtot, "tlsph/kk:bond_j");
+    grow(d_bk, (size_t) nbtot, "tlsph/kk:bond_k");
+    int *bj = d_bj.data(), *bk = d_bk.data();
+    const int per[3] = {this->domain->xperiodic, this->domain->yperiodic, this->domain->zperiodic};
+    const double prd[3] = {this->domain->xprd, this->domain->yprd, this->domain->zprd};
+    const double half[3] = {this->domain->xprd_half, this->domain->yprd_half, this->domain->zprd_half};
+    const int px = per[0], py = per[1], pz = per[2];
+    const double lx = prd[0], ly = prd[1], lz = prd[2], hx = half[0], hy = half[1], hz = half[2];
+    // (3) the rows, in the order of Base::resolve_bonds
+    Kokkos::parallel_reduce(
+        "tlsph/kk:resolve_fill", Kokkos::RangePolicy<DeviceType>(0, nlocal),
+        KOKKOS_LAMBDA(const int i, double &emax) {
+          const int s0 = start[i];
+          int n = 0;
+          for (int pass = 0; pass < 3; pass++) {
+            if (pass == 2 && !all) break;
+            for (int k = 0; k < np[i]; k++) {
+              const int sk = st[(size_t) mp * i + k];
+              if (pass < 2 && sk != INTACT) continue;
+              if (pass == 2 && sk != BROKEN) continue;
+              int j = lookup(pt[(size_t) mp * i + k]);
+              if (j < 0) continue;    // (a broken partner that left the ghost shell)
+              // Domain::closest_image
+              {
+                double d0 = x(i, 0) - x(j, 0), d1 = x(i, 1) - x(j, 1), d2 = x(i, 2) - x(j, 2);
+                double rmin = d0 * d0 + d1 * d1 + d2 * d2;
+                int jj = j, closest = j;
+                while (same(jj) >= 0) {
+                  jj = same(jj);
+                  d0 = x(i, 0) - x(jj, 0);
+                  d1 = x(i, 1) - x(jj, 1);
+                  d2 = x(i, 2) - x(jj, 2);
+                  const double r = d0 * d0 + d1 * d1 + d2 * d2;
+                  if (r < rmin) rmin = r, closest = jj;
+                }
+                j = closest;
+              }
+              if (pass < 2 && (pass == 0) != (j >= nlocal || j > i)) continue;
+              // the bond vector from x0c against the minimum image of x0 (Domain::minimum_image)
+              double Xm[3] = {x0(j, 0) - x0(i, 0), x0(j, 1) - x0(i, 1), x0(j, 2) - x0(i, 2)};
+              if (px) while (fabs(Xm[0]) > hx) Xm[0] += (Xm[0] < 0.0) ? lx : -lx;
+              if (py) while (fabs(Xm[1]) > hy) Xm[1] += (Xm[1] < 0.0) ? ly : -ly;
+              if (pz) while (fabs(Xm[2]) > hz) Xm[2] += (Xm[2] < 0.0) ? lz : -lz;
+              double X[3] = {x0cd[3 * j] - x0cd[3 * i], x0cd[3 * j + 1] - x0cd[3 * i + 1],
+                             x0cd[3 * j + 2] - x0cd[3 * i + 2]};
+              if (twod) X[2] = Xm[2] = 0.0;
+              const double e = sqrt(((X[0] - Xm[0]) * (X[0] - Xm[0]) + (X[1] - Xm[1]) * (X[1] - Xm[1]) +
+                                     (X[2] - Xm[2]) * (X[2] - Xm[2])) /
+                                    (Xm[0] * Xm[0] + Xm[1] * Xm[1] + Xm[2] * Xm[2]));
+              if (!(e <= emax)) emax = e;
+              bj[s0 + n] = j;
+              bk[s0 + n] = k;
+              n++;
+            }
+            if (pass == 0) nld[i] = n;
+            if (pass == 1) nbd[i] = n;
+          }
+        },
+        Kokkos::Max<double>(image_error));
+  }
+  if (missing > 0 || !(image_error <= 1.0e-8)) {
+    // the host resolution names the particle (error->one), as without the device
+    double shepard_max;
+    int shepard_i;
+    this->resolve_bonds(false, shepard_max, shepard_i);
+    error->one(FLERR, "pair tlsph/kk: the device's partner resolution found {} missing partners "
+                      "or an image error of {:.3g} that the host's did not", missing, image_error);
+  }
+  return (size_t) nbtot;
+}
 
 template <class DeviceType, class Base>
 void PairTLSPHKokkosT<DeviceType, Base>::build_bond_cache()
@@ -182,20 +364,26 @@ void PairTLSPHKokkosT<DeviceType, Base>::build_bond_cache()
     host_builds++;
     return;
   }
-  double shepard_max;
-  int shepard_i;
   const double t0 = MPI_Wtime();
-  this->resolve_bonds(false, shepard_max, shepard_i);    // (no check: no Shepard sums)
-  const double t1 = MPI_Wtime();
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
-  const size_t nb = bond_start[nlocal];
+  size_t nb;
+  if (device_resolve_ok()) {
+    nb = resolve_bonds_device();
+    device_resolves++;
+  } else {
+    double shepard_max;
+    int shepard_i;
+    this->resolve_bonds(false, shepard_max, shepard_i);    // (no check: no Shepard sums)
+    nb = bond_start[nlocal];
+    upload(d_start, bond_start, nlocal + 1, "tlsph/kk:bond_start");
+    upload(d_nbond, nbond, nlocal, "tlsph/kk:nbond");
+    upload(d_nlead, nlead, nlocal, "tlsph/kk:nlead");
+    upload(d_bj, lean.j, nb, "tlsph/kk:bond_j");
+    upload(d_bk, lean.k, nb, "tlsph/kk:bond_k");
+    upload(d_x0c, x0c[0], (size_t) nall * 3, "tlsph/kk:x0c");
+  }
+  const double t1 = MPI_Wtime();
   const int qs = correction_size();
-  upload(d_start, bond_start, nlocal + 1, "tlsph/kk:bond_start");
-  upload(d_nbond, nbond, nlocal, "tlsph/kk:nbond");
-  upload(d_nlead, nlead, nlocal, "tlsph/kk:nlead");
-  upload(d_bj, lean.j, nb, "tlsph/kk:bond_j");
-  upload(d_bk, lean.k, nb, "tlsph/kk:bond_k");
-  upload(d_x0c, x0c[0], (size_t) nall * 3, "tlsph/kk:x0c");
   auto grow = [](auto &v, size_t n, const char *name) {
     using V = typename std::remove_reference<decltype(v)>::type;
     if (v.extent(0) < n)
@@ -214,8 +402,8 @@ void PairTLSPHKokkosT<DeviceType, Base>::build_bond_cache()
 
   // the particles in chunks, so that the records of a chunk's bonds fit a
   // scratch view (about 512 MB on a GPU, 16 MB on a host backend)
-  int maxn = 1;
-  for (int i = 0; i < nlocal; i++) maxn = MAX(maxn, bond_start[i + 1] - bond_start[i]);
+  // (the longest row: at most the bond fix's maxpartner)
+  const int maxn = MAX(1, this->bonds->maxpartner);
   const size_t per = (size_t) maxn * (sizeof(TLSPH::Bond) + sizeof(double));
   const size_t budget = (execution_space == Device && !TLSPHKK::device_model()) ? (512u << 20) : (16u << 20);
   const int chunk = (int) MAX((size_t) 1, MIN((size_t) MAX(nlocal, 1), budget / per));
@@ -249,7 +437,7 @@ void PairTLSPHKokkosT<DeviceType, Base>::build_bond_cache()
   build_time[2] += MPI_Wtime() - t2;
   this->cache_version++;
   uploaded_version = this->cache_version;
-  after_cache_build();
+  after_cache_build(nb);
   device_builds++;
   if (env_flag("TLSPH_KK_CACHE_CHECK")) check_device_cache();
 }
@@ -304,8 +492,16 @@ template <class DeviceType, class Base>
 void PairTLSPHKokkosT<DeviceType, Base>::check_device_cache()
 {
   const int nlocal = atom->nlocal;
-  const size_t nb = bond_start[nlocal];
+  int nbdev;    // the device's bond count (its row starts' total)
+  download(&nbdev, d_start, nlocal, 1);
+  const size_t nb = nbdev;
   std::vector<double> g(nb * dim), w(nb * 2), q((size_t) nlocal * correction_size()), sg((size_t) nlocal * 3);
+  std::vector<int> bj(nb), bk(nb), st(nlocal + 1), nbd(nlocal), nld(nlocal);
+  download(bj.data(), d_bj, 0, nb);
+  download(bk.data(), d_bk, 0, nb);
+  download(st.data(), d_start, 0, nlocal + 1);
+  download(nbd.data(), d_nbond, 0, nlocal);
+  download(nld.data(), d_nlead, 0, nlocal);
   download(g.data(), d_bg, 0, g.size());
   download(w.data(), d_bw, 0, w.size());
   download(q.data(), d_Q, 0, q.size());
@@ -324,6 +520,12 @@ void PairTLSPHKokkosT<DeviceType, Base>::check_device_cache()
     }
     worst = MAX(worst, scale > 0.0 ? diff / scale : diff);
   };
+  // the partners: equal, index by index (the host build's resolve_bonds)
+  bool same = (size_t) bond_start[nlocal] == nb;
+  for (size_t m = 0; same && m < nb; m++) same = bj[m] == lean.j[m] && bk[m] == lean.k[m];
+  for (int i = 0; same && i < nlocal; i++)
+    same = st[i] == bond_start[i] && nbd[i] == nbond[i] && nld[i] == nlead[i];
+  if (!same) worst = INFINITY;
   cmp(g, lean.g);
   cmp(w, lean.w);
   cmp(q, Q[0]);
@@ -593,8 +795,8 @@ void PairTLSPHKokkosT<DeviceType, Base>::compute(int eflag, int vflag)
   auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
 
   // after a neighbor build the bond cache is rebuilt (build_bond_cache: the
-  // partners resolved on the host from x, x0, vfrac, type and the bond fix,
-  // the bond math on the device)
+  // partners resolved and the bond math run on the device, x0c set on the
+  // host from x and x0, which need to be there)
   if (bonds->rebuild) {
     host_sync(X_MASK | TYPE_MASK | TAG_MASK);
     host_sync(EXTENDED_MASK | VFRAC_MASK | X0_MASK);
@@ -755,16 +957,16 @@ void PairTLSPHKokkosT<DeviceType, Base>::report_copies(bigint nsteps)
     std::string line = fmt::format("tlsph/kk bond cache: {} device builds, {} host builds",
                                    device_builds, host_builds);
     if (device_builds)
-      line += fmt::format(" (per device build on rank 0: partners resolved on the host {:.3f} ms, "
-                          "uploads {:.3f} ms, bond math {:.3f} ms)",
-                          1e3 * build_time[0] / device_builds, 1e3 * build_time[1] / device_builds,
-                          1e3 * build_time[2] / device_builds);
+      line += fmt::format(" (per device build on rank 0: partners resolved {:.3f} ms, of {} builds "
+                          "{} on the device; uploads {:.3f} ms, bond math {:.3f} ms)",
+                          1e3 * build_time[0] / device_builds, device_builds, device_resolves,
+                          1e3 * build_time[1] / device_builds, 1e3 * build_time[2] / device_builds);
     if (env_flag("TLSPH_KK_CACHE_CHECK"))
       line += fmt::format(", the device builds checked against the host build: largest "
                           "relative difference {:.3g}", cache_check_worst);
     utils::logmesg(this->lmp, line + "\n");
   }
-  device_builds = host_builds = 0;
+  device_builds = host_builds = device_resolves = 0;
   cache_check_worst = 0.0;
   build_time[0] = build_time[1] = build_time[2] = 0.0;
   if (!on_device()) {
@@ -877,6 +1079,33 @@ void PairTLSPHKokkosT<DeviceType, Base>::sync_host()
   download(F[0], d_F, 0, (size_t) 9 * nlocal);
   download(psi, d_psi, 0, nlocal);
   download(ehg, d_ehg, 0, nlocal);
+  // the bond rows for host code that reads them (compute tlsph/damage/atom,
+  // the CPU velocity filter: counts, row starts, partner indices); the
+  // device holds the bond cache, breaks included
+  if (uploaded_version >= 0 && d_start.extent(0) > (size_t) nlocal) {
+    int nb;
+    download(&nb, d_start, nlocal, 1);
+    if (nb > this->ncache_max) {
+      this->ncache_max = nb + nb / 8 + 16;
+      this->memory->destroy(lean.j);
+      this->memory->destroy(lean.g);
+      this->memory->destroy(lean.w);
+      this->memory->destroy(lean.k);
+      this->memory->create(lean.j, this->ncache_max, "tlsph:bond_j");
+      this->memory->create(lean.g, (bigint) this->ncache_max * dim, "tlsph:bond_g");
+      this->memory->create(lean.w, (bigint) this->ncache_max * 2, "tlsph:bond_w");
+      this->memory->create(lean.k, this->ncache_max, "tlsph:bond_k");
+    }
+    if (nlocal + 1 > this->nstart_max) {
+      this->nstart_max = atom->nmax + 1;
+      this->memory->destroy(bond_start);
+      this->memory->create(bond_start, this->nstart_max, "tlsph:bond_start");
+    }
+    download(bond_start, d_start, 0, nlocal + 1);
+    download(nbond, d_nbond, 0, nlocal);
+    download(nlead, d_nlead, 0, nlocal);
+    download(lean.j, d_bj, 0, nb);
+  }
   host_current = 1;
   host_step = update->ntimestep;
 }

@@ -7,9 +7,9 @@
    particles and call the same physics headers (tlsph_particle.h through
    PairTLSPH::stress_row and TLSPH::particle_force_bonds). Per-particle
    state (F, P, packed rows, psi, ...) and the lean bond arrays live in
-   device views between steps. After each neighbor build the partners are
-   resolved on the host and the bond math of the cache runs on the device
-   (build_bond_cache); an ordinary step copies nothing between host and
+   device views between steps. After each neighbor build the bond cache is
+   built on the device from the bond fix's partner rows (build_bond_cache);
+   an ordinary step copies nothing between host and
    device (tlsph_kk_copies.h, ctest kokkos.transfers).
    The force pass uses the gather form of the stress term (every particle
    sums its whole force from its bonds, no scatter, no atomics), i.e. the
@@ -95,6 +95,11 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void force_kernel_scatter(double *vir);
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void force_pass(double *vir);
   template <int DIM, int ORDER> void dispatch_force(int hg, int visc, int vir, double *v);
+  // the partners of the bond cache resolved on the device (public: device lambdas)
+  bool device_resolve_ok() const;
+  size_t resolve_bonds_device();
+  iview d_npartner, d_pstate;
+  Kokkos::View<tagint *, DeviceType> d_ptag;
   template <int DIM, int ORDER> long long bond_math_chunk(int first, int last, int maxn, int nq,
                                                     bool has_frozen, double kscale);
 
@@ -160,16 +165,17 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   bigint host_step;
   void grow_device();
   virtual void upload_bond_cache();
-  // after every bond cache that reaches the device (tlsph/damage/kk: its extras)
-  virtual void after_cache_build() {}
-  // the bond cache after a neighbor build: partners resolved on the host
-  // (Base::resolve_bonds: LAMMPS's map and images), the bond math on the
-  // device (bond_math_chunk); the host build where the device one does not
-  // apply (see the .cpp)
+  // after every bond cache that reaches the device, with its nb bonds
+  // (tlsph/damage/kk: its extras)
+  virtual void after_cache_build(size_t /*nb*/) {}
+  // the bond cache after a neighbor build: partners resolved
+  // (resolve_bonds_device) and the bond math run (bond_math_chunk) on the
+  // device; the host build where the device one does not apply (see the .cpp)
   void build_bond_cache() override;
   Kokkos::View<TLSPH::Bond *, DeviceType> d_scratch;    // bond records of a chunk of particles
   dview d_vjs, d_frozen;
   int device_builds = 0, host_builds = 0;    // bond cache builds of this run, by where
+  int device_resolves = 0;                   // device builds whose partners the device resolved
   double build_time[3] = {0.0, 0.0, 0.0};    // device builds: resolve, uploads, bond math [s]
   double cache_check_worst = 0.0;            // TLSPH_KK_CACHE_CHECK: largest difference
   void check_device_cache();
