@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <type_traits>
 #include <utility>
 
 using namespace LAMMPS_NS;
@@ -710,6 +711,28 @@ void PairTLSPH::set_reference_images()
   }
 }
 
+/* room for a bond cache of nbonds bonds over the local particles (lean
+   arrays with slack, row starts) */
+void PairTLSPH::reserve_bond_cache(int nbonds)
+{
+  if (nbonds > ncache_max) {
+    ncache_max = nbonds + nbonds / 8 + 16;
+    memory->destroy(lean.j);
+    memory->destroy(lean.g);
+    memory->destroy(lean.w);
+    memory->destroy(lean.k);
+    memory->create(lean.j, ncache_max, "tlsph:bond_j");
+    memory->create(lean.g, (bigint) ncache_max * dim, "tlsph:bond_g");
+    memory->create(lean.w, (bigint) ncache_max * 2, "tlsph:bond_w");
+    memory->create(lean.k, ncache_max, "tlsph:bond_k");
+  }
+  if (atom->nlocal + 1 > nstart_max) {
+    nstart_max = atom->nmax + 1;
+    memory->destroy(bond_start);
+    memory->create(bond_start, nstart_max, "tlsph:bond_start");
+  }
+}
+
 /* The partners of the bond cache (pair_tlsph.h), without the bond math:
    x0c, and per local particle its partner indices lean.j and slots lean.k
    in the cache's order (the intact bonds that lead their pair, then the
@@ -733,22 +756,7 @@ void PairTLSPH::resolve_bonds(bool shepard_sum, double &shepard_max, int &shepar
 
   int total = 0;
   for (int i = 0; i < nlocal; i++) total += bonds->npartner[i];
-  if (total > ncache_max) {
-    ncache_max = total + total / 8 + 16;
-    memory->destroy(lean.j);
-    memory->destroy(lean.g);
-    memory->destroy(lean.w);
-    memory->destroy(lean.k);
-    memory->create(lean.j, ncache_max, "tlsph:bond_j");
-    memory->create(lean.g, (bigint) ncache_max * dim, "tlsph:bond_g");
-    memory->create(lean.w, (bigint) ncache_max * 2, "tlsph:bond_w");
-    memory->create(lean.k, ncache_max, "tlsph:bond_k");
-  }
-  if (nlocal + 1 > nstart_max) {
-    nstart_max = atom->nmax + 1;
-    memory->destroy(bond_start);
-    memory->create(bond_start, nstart_max, "tlsph:bond_start");
-  }
+  reserve_bond_cache(total);
 
   const double kernel_scale = (dim == 2) ? 1.0 / thickness : 1.0;
   int nb = 0;
@@ -842,23 +850,19 @@ void PairTLSPH::build_bond_cache()
     // a correction frozen at setup: independent of which broken partners
     // are still present as ghosts
     const double *frozen = (fz && fz[0] == 1.0) ? fz + 1 : nullptr;
-    int achieved;
-    if (dim == 2)
-      achieved = (order == 1)
-          ? TLSPH::particle_bonds<2, 1>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, vfrac,
-                                        kernel, kernel_scale, frozen, b, vj.data(), Q[i], sumg[i],
-                                        lean.g + 2 * (bigint) s, lean.w + 2 * (bigint) s)
-          : TLSPH::particle_bonds<2, 2>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, vfrac,
-                                        kernel, kernel_scale, frozen, b, vj.data(), Q[i], sumg[i],
-                                        lean.g + 2 * (bigint) s, lean.w + 2 * (bigint) s);
-    else
-      achieved = (order == 1)
-          ? TLSPH::particle_bonds<3, 1>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, vfrac,
-                                        kernel, kernel_scale, frozen, b, vj.data(), Q[i], sumg[i],
-                                        lean.g + 3 * (bigint) s, lean.w + 2 * (bigint) s)
-          : TLSPH::particle_bonds<3, 2>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, vfrac,
-                                        kernel, kernel_scale, frozen, b, vj.data(), Q[i], sumg[i],
-                                        lean.g + 3 * (bigint) s, lean.w + 2 * (bigint) s);
+    auto math = [&](auto dim_order) {
+      constexpr int D = decltype(dim_order)::first_type::value;
+      constexpr int O = decltype(dim_order)::second_type::value;
+      return TLSPH::particle_bonds<D, O>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, vfrac,
+                                         kernel, kernel_scale, frozen, b, vj.data(), Q[i], sumg[i],
+                                         lean.g + D * (bigint) s, lean.w + 2 * (bigint) s);
+    };
+    using I1 = std::integral_constant<int, 1>;
+    using I2 = std::integral_constant<int, 2>;
+    using I3 = std::integral_constant<int, 3>;
+    const int achieved = (dim == 2)
+        ? (order == 1 ? math(std::pair<I2, I1>()) : math(std::pair<I2, I2>()))
+        : (order == 1 ? math(std::pair<I3, I1>()) : math(std::pair<I3, I2>()));
     if (frozen) continue;
     if (achieved < order) degraded++;
     if (achieved == 0) {

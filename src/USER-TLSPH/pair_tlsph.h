@@ -201,6 +201,7 @@ class PairTLSPH : public Pair {
   // (virtual: the /kk styles build it on their device, pair_tlsph_kokkos.h)
   virtual void build_bond_cache();
   void resolve_bonds(bool shepard_sum, double &shepard_max, int &shepard_i);
+  void reserve_bond_cache(int nbonds);
   void check_reference_partners(int nbad, tagint bad_tag, int bad_np, double bad_vol,
                                 double bad_dmin);
   void set_reference_images();

@@ -902,29 +902,34 @@ template <class DeviceType, class Base>
 void PairTLSPHKokkosT<DeviceType, Base>::host_sync(unsigned int mask)
 {
   atomKK->sync(Host, mask);
-  if (!TLSPHKK::device_model()) return;
-  // a field read again in the same step is on the host already (the device
-  // changes it once per step, in the integrator): counted once per step;
-  // named by the fields the mask itself names (modify's reading)
-  double bytes;
-  const auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
-  const std::string f = avec->mask_fields(mask, true, &bytes);
-  if (f.empty()) return;
-  bigint &last = host_synced[f];
-  if (last == update->ntimestep) return;
-  last = update->ntimestep;
-  TLSPHKK::count_copy("host-code " + f, 1, bytes);
+  count_host_code(mask, 1);
 }
 
 template <class DeviceType, class Base>
 void PairTLSPHKokkosT<DeviceType, Base>::host_modified(unsigned int mask)
 {
   atomKK->modified(Host, mask);
+  count_host_code(mask, 0);
+}
+
+// the device model's count of a host access (to_host 1) or change (0) of
+// the fields the mask names (as modified() reads it); a field read again in
+// the same step is on the host already (the device changes it once per
+// step, in the integrator): counted once per step
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::count_host_code(unsigned int mask, int to_host)
+{
   if (!TLSPHKK::device_model()) return;
   double bytes;
   const auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
   const std::string f = avec->mask_fields(mask, true, &bytes);
-  if (!f.empty()) TLSPHKK::count_copy("host-code " + f, 0, bytes);
+  if (f.empty()) return;
+  if (to_host) {
+    bigint &last = host_synced[f];
+    if (last == update->ntimestep) return;
+    last = update->ntimestep;
+  }
+  TLSPHKK::count_copy("host-code " + f, to_host, bytes);
 }
 
 /* The host<->device copies of the run just ended (FixTLSPHBonds::post_run),
@@ -1085,22 +1090,7 @@ void PairTLSPHKokkosT<DeviceType, Base>::sync_host()
   if (uploaded_version >= 0 && d_start.extent(0) > (size_t) nlocal) {
     int nb;
     download(&nb, d_start, nlocal, 1);
-    if (nb > this->ncache_max) {
-      this->ncache_max = nb + nb / 8 + 16;
-      this->memory->destroy(lean.j);
-      this->memory->destroy(lean.g);
-      this->memory->destroy(lean.w);
-      this->memory->destroy(lean.k);
-      this->memory->create(lean.j, this->ncache_max, "tlsph:bond_j");
-      this->memory->create(lean.g, (bigint) this->ncache_max * dim, "tlsph:bond_g");
-      this->memory->create(lean.w, (bigint) this->ncache_max * 2, "tlsph:bond_w");
-      this->memory->create(lean.k, this->ncache_max, "tlsph:bond_k");
-    }
-    if (nlocal + 1 > this->nstart_max) {
-      this->nstart_max = atom->nmax + 1;
-      this->memory->destroy(bond_start);
-      this->memory->create(bond_start, this->nstart_max, "tlsph:bond_start");
-    }
+    this->reserve_bond_cache(nb);
     download(bond_start, d_start, 0, nlocal + 1);
     download(nbond, d_nbond, 0, nlocal);
     download(nlead, d_nlead, 0, nlocal);

@@ -64,6 +64,7 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   bool on_device() const override { return this->execution_space == Device; }
   void host_sync(unsigned int mask) override;
   void host_modified(unsigned int mask) override;
+  void count_host_code(unsigned int mask, int to_host);
 
   int pack_forward_comm_kokkos(int, DAT::tdual_int_2d, int, DAT::tdual_xfloat_1d &, int,
                                int *) override;
