@@ -548,6 +548,14 @@ def case_transfers(args):
     runs, _, p = transfer_run(args, "transfers_control", "tlsph", n1, n2, 1, True,
                               ["-var", "extra", "addforce"])
     problems += p
+    # ... and the pair style warns about it (it declares no atom data: on a
+    # GPU its force would be lost)
+    log = open(os.path.join(args.workdir, "transfers_control.log")).read() \
+        if os.path.exists(os.path.join(args.workdir, "transfers_control.log")) else ""
+    if not re.search(r"^WARNING: pair tlsph/kk: fix extra \(addforce\) has no Kokkos variant", log, re.M):
+        problems.append("control: no warning that fix addforce works on stale host copies")
+    else:
+        print("control: the pair style warns that fix extra (addforce) works on stale host copies")
     if runs:
         per = per_step_copies(runs, n1, n2)
         seen = [n for n, c in per.items() if n.startswith("host-fix extra/addforce:")

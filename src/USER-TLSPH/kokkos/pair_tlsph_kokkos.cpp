@@ -95,6 +95,26 @@ void PairTLSPHKokkosT<DeviceType, Base>::init_style()
     }
   }
 
+  // On a device, a fix without a Kokkos variant that runs every step and
+  // declares no atom data (datamask; many fixes of this LAMMPS version,
+  // e.g. fix addforce) works on host copies that LAMMPS neither brings up
+  // to date before it nor copies back after it: a force it adds is lost.
+  // Warned once per fix (doc/kokkos-cuda.md, "Host-device copies").
+  if (on_device() && comm->me == 0) {
+    using namespace FixConst;
+    const int per_step = INITIAL_INTEGRATE | POST_INTEGRATE | PRE_FORCE | PRE_REVERSE | POST_FORCE |
+        FINAL_INTEGRATE | END_OF_STEP;
+    for (int f = 0; f < this->modify->nfix; f++) {
+      Fix *fix = this->modify->fix[f];
+      if (fix->kokkosable || !(this->modify->fmask[f] & per_step) || fix == this->bonds) continue;
+      if (fix->datamask_read == EMPTY_MASK && fix->datamask_modify == EMPTY_MASK)
+        error->warning(FLERR, "pair {}/kk: fix {} ({}) has no Kokkos variant and declares no atom "
+                              "data: on a GPU it reads and changes stale host copies every step "
+                              "(a force it adds is lost); apply it with a Kokkos style or run on "
+                              "a host backend", force->pair_style, fix->id, fix->style);
+    }
+  }
+
   // materials, per type, to the device (pair_coeff cannot change them during a run)
   const int nt = atom->ntypes + 1;
   d_mat = Kokkos::View<Material *, DeviceType>("tlsph/kk:mat", nt);
