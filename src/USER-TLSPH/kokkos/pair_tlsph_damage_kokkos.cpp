@@ -55,12 +55,8 @@ template <class DeviceType> void PairTLSPHDamageKokkos<DeviceType>::after_cache_
 {
   const int nlocal = this->atom->nlocal;
   upload(d_nintact0, this->bonds->nintact0, nlocal, "tlsph/damage/kk:nintact0");
-  if (d_broken_i.extent(0) < nb + 1) {
-    d_broken_i = iview(Kokkos::view_alloc(Kokkos::WithoutInitializing, "tlsph/damage/kk:broken_i"),
-                       nb + nb / 8 + 16);
-    d_broken_m = iview(Kokkos::view_alloc(Kokkos::WithoutInitializing, "tlsph/damage/kk:broken_m"),
-                       nb + nb / 8 + 16);
-  }
+  TLSPHKK::reserve(d_broken_i, nb + 1, "tlsph/damage/kk:broken_i");
+  TLSPHKK::reserve(d_broken_m, nb + 1, "tlsph/damage/kk:broken_m");
 }
 
 /* ----------------------------------------------------------------------

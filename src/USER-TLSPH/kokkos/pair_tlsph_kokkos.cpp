@@ -12,6 +12,7 @@
 #include "atom_masks.h"
 #include "atom_vec_peri_kokkos.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "fix_tlsph_bonds.h"
 #include "fix.h"
@@ -29,7 +30,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
-#include <type_traits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -245,15 +245,9 @@ size_t PairTLSPHKokkosT<DeviceType, Base>::resolve_bonds_device()
   atomKK->sync(execution_space, X_MASK);
   auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
   avec->k_x0.template sync<DeviceType>();
-  if (d_start.extent(0) < (size_t) nlocal + 1)
-    d_start = iview(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("tlsph/kk:bond_start")),
-                    nlocal + 1 + nlocal / 8 + 16);
-  if (d_nbond.extent(0) < (size_t) nlocal) {
-    d_nbond = iview(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("tlsph/kk:nbond")),
-                    nlocal + nlocal / 8 + 16);
-    d_nlead = iview(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("tlsph/kk:nlead")),
-                    nlocal + nlocal / 8 + 16);
-  }
+  TLSPHKK::reserve(d_start, (size_t) nlocal + 1, "tlsph/kk:bond_start");
+  TLSPHKK::reserve(d_nbond, nlocal, "tlsph/kk:nbond");
+  TLSPHKK::reserve(d_nlead, nlocal, "tlsph/kk:nlead");
 
   const int *np = d_npartner.data(), *st = d_pstate.data();
   const tagint *pt = d_ptag.data();
@@ -301,18 +295,13 @@ size_t PairTLSPHKokkosT<DeviceType, Base>::resolve_bonds_device()
   }
   double image_error = 0.0;
   if (missing == 0) {
-    auto grow = [](iview &v, size_t n, const char *name) {
-      if (v.extent(0) < n)
-        v = iview(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name)), n + n / 8 + 16);
-    };
-    grow(d_bj, (size_t) nbtot, "tlsph/kk:bond_j");
-    grow(d_bk, (size_t) nbtot, "tlsph/kk:bond_k");
+    TLSPHKK::reserve(d_bj, (size_t) nbtot, "tlsph/kk:bond_j");
+    TLSPHKK::reserve(d_bk, (size_t) nbtot, "tlsph/kk:bond_k");
     int *bj = d_bj.data(), *bk = d_bk.data();
-    const int per[3] = {this->domain->xperiodic, this->domain->yperiodic, this->domain->zperiodic};
-    const double prd[3] = {this->domain->xprd, this->domain->yprd, this->domain->zprd};
-    const double half[3] = {this->domain->xprd_half, this->domain->yprd_half, this->domain->zprd_half};
-    const int px = per[0], py = per[1], pz = per[2];
-    const double lx = prd[0], ly = prd[1], lz = prd[2], hx = half[0], hy = half[1], hz = half[2];
+    const Domain *dom = this->domain;
+    const int px = dom->xperiodic, py = dom->yperiodic, pz = dom->zperiodic;
+    const double lx = dom->xprd, ly = dom->yprd, lz = dom->zprd;
+    const double hx = dom->xprd_half, hy = dom->yprd_half, hz = dom->zprd_half;
     // (3) the rows, in the order of Base::resolve_bonds
     Kokkos::parallel_reduce(
         "tlsph/kk:resolve_fill", Kokkos::RangePolicy<DeviceType>(0, nlocal),
@@ -404,15 +393,10 @@ void PairTLSPHKokkosT<DeviceType, Base>::build_bond_cache()
   }
   const double t1 = MPI_Wtime();
   const int qs = correction_size();
-  auto grow = [](auto &v, size_t n, const char *name) {
-    using V = typename std::remove_reference<decltype(v)>::type;
-    if (v.extent(0) < n)
-      v = V(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name)), n + n / 8 + 16);
-  };
-  grow(d_bg, nb * dim, "tlsph/kk:bond_g");
-  grow(d_bw, nb * 2, "tlsph/kk:bond_w");
-  grow(d_Q, (size_t) nlocal * qs, "tlsph/kk:Q");
-  grow(d_sumg, (size_t) nlocal * 3, "tlsph/kk:sumg");
+  TLSPHKK::reserve(d_bg, nb * dim, "tlsph/kk:bond_g");
+  TLSPHKK::reserve(d_bw, nb * 2, "tlsph/kk:bond_w");
+  TLSPHKK::reserve(d_Q, (size_t) nlocal * qs, "tlsph/kk:Q");
+  TLSPHKK::reserve(d_sumg, (size_t) nlocal * 3, "tlsph/kk:sumg");
   const bool has_frozen = this->correction_from_all_partners && this->bonds->nfrozen;
   const int nq = has_frozen ? this->bonds->nfrozen : 0;
   if (has_frozen) upload(d_frozen, this->bonds->frozen[0], (size_t) nlocal * (1 + nq), "tlsph/kk:frozen");

@@ -72,11 +72,18 @@ inline void count_copy(const std::string &label, int to_host, double bytes)
   c.bytes[to_host] += bytes;
 }
 
+// view v with room for n elements (reallocated with slack when too short;
+// its contents are then not kept)
+template <class View> inline void reserve(View &v, size_t n, const char *name)
+{
+  if (v.extent(0) < n)
+    v = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name)), n + n / 8 + 16);
+}
+
 // host array h[0..n) -> device view d (grown, with slack, when too short)
 template <class View, class T> inline void upload(View &d, const T *h, size_t n, const char *name)
 {
-  if (d.extent(0) < n)
-    d = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name)), n + n / 8 + 16);
+  reserve(d, n, name);
   if (n == 0) return;
   Kokkos::deep_copy(Kokkos::subview(d, std::make_pair(size_t(0), n)),
                     HostUnmanaged<const T>(h, n));
