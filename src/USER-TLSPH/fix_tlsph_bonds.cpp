@@ -367,6 +367,16 @@ void FixTLSPHBonds::set_arrays(int i)
   if (nfrozen) frozen[i][0] = 0.0;
 }
 
+void FixTLSPHBonds::setup_pre_exchange()
+{
+  if (owner) owner->sort_particles();
+}
+
+void FixTLSPHBonds::pre_exchange()
+{
+  if (owner) owner->sort_particles();
+}
+
 void FixTLSPHBonds::copy_arrays(int i, int j, int /*delflag*/)
 {
   host_arrays();

@@ -45,6 +45,10 @@ class FixTLSPHBonds : public Fix {
   void grow_arrays(int) override;
   void set_arrays(int) override;
   void copy_arrays(int, int, int) override;
+  // the SIMD step of the pair style sorts the local particles (PRE_EXCHANGE
+  // is added to this fix's mask by the pair style when it runs that step)
+  void setup_pre_exchange() override;
+  void pre_exchange() override;
   int pack_exchange(int, double *) override;
   int unpack_exchange(int, double *) override;
   void write_restart(FILE *) override;

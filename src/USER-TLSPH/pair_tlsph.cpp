@@ -9,6 +9,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix.h"
 #include "fix_tlsph_bonds.h"
 #include "force.h"
 #include "memory.h"
@@ -86,6 +87,17 @@ PairTLSPH::~PairTLSPH()
   memory->destroy(lean.w);
   memory->destroy(lean.k);
   memory->destroy(x0c);
+  memory->destroy(ell.start);
+  memory->destroy(ell.j);
+  memory->destroy(ell.v);
+  memory->destroy(ell.kind);
+  memory->destroy(ell.pat);
+  memory->destroy(ell.pat_start);
+  memory->destroy(ell.pat_off);
+  memory->destroy(ell.pat_v);
+  memory->destroy(ell_perm);
+  memory->destroy(ell_inv);
+  memory->destroy(ell_soa);
 }
 
 void PairTLSPH::allocate()
@@ -125,6 +137,7 @@ void PairTLSPH::set_defaults()
   thickness = 1.0;
   check_partners = 1;
   check_volume = 1;
+  simd_request = SIMD_AUTO;
 }
 
 void PairTLSPH::settings(int narg, char **arg)
@@ -185,10 +198,18 @@ void PairTLSPH::settings(int narg, char **arg)
       else if (strcmp(val, "no") == 0) flag = 0;
       else error->all(FLERR, "pair_style tlsph: {} must be 'yes' or 'no', got '{}'", key, val);
       (key == "check_partners" ? check_partners : check_volume) = flag;
+    } else if (key == "simd") {
+      if (strcmp(val, "auto") == 0) simd_request = SIMD_AUTO;
+      else if (strcmp(val, "no") == 0) simd_request = SIMD_NO;
+      else if (strcmp(val, "portable") == 0) simd_request = SIMD_PORTABLE;
+      else if (strcmp(val, "avx2") == 0) simd_request = SIMD_AVX2;
+      else if (strcmp(val, "avx512") == 0) simd_request = SIMD_AVX512;
+      else error->all(FLERR, "pair_style tlsph: simd must be 'auto', 'no', 'portable', 'avx2' or "
+                             "'avx512', got '{}'", val);
     } else {
       error->all(FLERR,
                  "pair_style tlsph: unknown keyword '{}' (allowed: h, alpha, beta, gamma, hourglass, "
-                 "plane, thickness, gradient, cutfactor, check_partners, check_volume)", key);
+                 "plane, thickness, gradient, cutfactor, check_partners, check_volume, simd)", key);
     }
     iarg += 2;
   }
@@ -566,8 +587,28 @@ void PairTLSPH::init_style()
   bonds->rebuild = 1;
 
   // forward communication: the packed rows; R only for the gather form
-  // (newton_pair off), which alone reads it
-  gather_rows = force->newton_pair ? 0 : 1;
+  // (newton_pair off, or the SIMD step), which alone reads it
+  select_simd();
+  ell_version = -1;
+  ell_nperm = 0;    // the columns' size follows the packed rows
+  report_simd = 1;
+  /* the SIMD step keeps the local particles sorted by reference position
+     (sort_particles, at every reneighboring before the exchange, through
+     the bond fix's pre_exchange): that order replaces LAMMPS's spatial sort
+     (atom_modify sort), which would undo it */
+  if (simd_isa != SIMD_NO) {
+    modify->fmask[ifix] |= FixConst::PRE_EXCHANGE;
+    if (atom->sortfreq > 0) {
+      atom->sortfreq = 0;
+      if (comm->me == 0)
+        utils::logmesg(lmp, "pair tlsph: the SIMD step ({}) sorts the particles by reference "
+                            "position itself: LAMMPS's atom sorting (atom_modify sort) is off\n",
+                       simd_name(simd_isa));
+    }
+  } else {
+    modify->fmask[ifix] &= ~FixConst::PRE_EXCHANGE;
+  }
+  gather_rows = (force->newton_pair && simd_isa == SIMD_NO) ? 0 : 1;
   comm_forward = packed_size();
   // the packed rows change size with the gradient order and dimension:
   // reallocate the per-atom arrays at the next force call
@@ -1243,11 +1284,15 @@ void PairTLSPH::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   refresh_bond_cache();
+  // the SIMD step (pair_tlsph_simd.cpp) reads the bond cache in its own layout
+  const bool simd = simd_isa != SIMD_NO;
+  if (simd && ell_version != cache_version) build_ell();
 
   // (1) F and stress; tlsph/damage applies its pre-cracks first, breaks bonds
   // inside the pass and then updates the damage and alpha_i (hooks, no-ops here)
   update_bonds();
-  deformation_pass();
+  if (simd) simd_deformation_pass();
+  else deformation_pass();
   after_deformation();
 
   comm->forward_comm_pair(this);
@@ -1255,8 +1300,15 @@ void PairTLSPH::compute(int eflag, int vflag)
   const int hg = (gamma != 0.0) ? hg_form : 0;
   const int visc = viscosity_active() ? 1 : 0;
   const int vir = vflag_global ? 1 : 0;
-  const int nt = force->newton_pair ? 1 : 0;
-  if (dim == 2) {
+  // the SIMD step's force pass is the gather form; on a virial step (thermo
+  // pressure, the setup of a run) the scalar gather form adds the virial,
+  // its forces discarded, so that the forces of every step come from the
+  // same code (a restart, whose setup step has the virial, stays bitwise)
+  const int nt = (force->newton_pair && !simd) ? 1 : 0;
+  if (simd) {
+    simd_forces(hg, visc);
+    if (vir) simd_virial(hg, visc);
+  } else if (dim == 2) {
     if (order == 1) dispatch_forces<2, 1>(hg, visc, vir, nt);
     else dispatch_forces<2, 2>(hg, visc, vir, nt);
   } else {
@@ -1422,6 +1474,11 @@ double PairTLSPH::memory_usage()
   // lean bond arrays: partner, g (dim), two weights, slot
   bytes += (double) ncache_max * (2 * sizeof(int) + (dim + 2) * sizeof(double));
   bytes += (double) nstart_max * sizeof(int);
+  // the SIMD step's layout: per slot and lane a partner and dim + 3 doubles
+  bytes += (double) ell_nstart * 3 * sizeof(int);
+  if (ell.npat) bytes += (double) ell.pat_start[ell.npat] * (sizeof(int) + (dim + 3) * sizeof(double));
+  bytes += (double) ell_nblock_max * TLSPH::ELL_C * (sizeof(int) + (dim + 3) * sizeof(double));
+  bytes += (double) ell_nperm * (2 * sizeof(int) + (3 * dim + packed_size()) * sizeof(double));
   return bytes;
 }
 

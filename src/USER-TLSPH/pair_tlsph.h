@@ -23,6 +23,7 @@ PairStyle(tlsph,PairTLSPH)
 #include "pair.h"
 #include "tlsph_kernel.h"
 #include "tlsph_material.h"
+#include "tlsph_ell.h"
 #include "tlsph_particle.h"
 
 #include <string>
@@ -93,6 +94,21 @@ class PairTLSPH : public Pair {
   virtual void host_modified(unsigned int) {}
 
   class FixTLSPHBonds *bonds;
+
+  // the SIMD step (pair_tlsph_simd.cpp, tlsph_ell.h): pair_style ... simd VALUE
+  enum { SIMD_AUTO = -1, SIMD_NO = 0, SIMD_PORTABLE = 1, SIMD_AVX2 = 2, SIMD_AVX512 = 3 };
+  static const char *simd_name(int isa);
+  static bool simd_supported(int isa);
+  int simd_in_use() const { return simd_isa; }
+  // chunks of the SIMD step's layout by kind (TLSPH::EllArrays: gather,
+  // stencil, pattern) and the number of patterns
+  void simd_chunks(int *kinds, int *npat) const
+  {
+    kinds[0] = kinds[1] = kinds[2] = 0;
+    for (int c = 0; simd_isa && c < ell.nchunk; c++) kinds[ell.kind[c]]++;
+    *npat = simd_isa ? ell.npat : 0;
+  }
+  void sort_particles();    // the SIMD step's order of the local particles (its bond fix calls it)
 
   /* the per-particle part of pass (1) for material m (TLSPH::particle_stress_row
      with the material's law; LAWS 0: isotropic only); the CPU loop and the
@@ -243,6 +259,31 @@ class PairTLSPH : public Pair {
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, int SCATTER> void compute_forces();
   template <int DIM, int ORDER> void dispatch_forces(int hg, int visc, int vir, int newton);
   template <int DIM, int ORDER, int HG> void dispatch_forces_hg(int visc, int vir, int newton);
+
+  // the SIMD step: the requested and the selected instruction set, the
+  // sliced-ELLPACK copy of the bond cache and the cache_version it copies
+  int simd_request = SIMD_AUTO;
+  int simd_isa = SIMD_NO;
+  TLSPH::EllArrays ell;
+  int ell_nstart = 0;
+  bigint ell_nblock_max = 0;
+  int ell_version = -1;
+  int *ell_perm = nullptr;      // the step's particle order -> LAMMPS index
+  int *ell_inv = nullptr;       // LAMMPS index -> the step's order
+  double *ell_soa = nullptr;    // columns (length ell_nperm): x, v, x0c, packed rows
+  int ell_nperm = 0;
+  bigint ell_pattern_bonds = 0;    // bond slots read from patterns
+  int report_simd = 1;             // 1: log the layout at the next build_ell
+  void ell_columns_xv();
+  void ell_columns_pk(int k0, int k1);
+  TLSPH::EllParticles ell_particles();
+  virtual bool simd_capable() const { return true; }    // false: styles without the SIMD step
+  void select_simd();
+  void build_ell();
+  template <int DIM, int ORDER, int LAWS> void simd_deformation();
+  void simd_deformation_pass();
+  void simd_forces(int hg, int visc);
+  void simd_virial(int hg, int visc);
 
   void allocate();
   void set_defaults();

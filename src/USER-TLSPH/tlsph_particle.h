@@ -197,7 +197,7 @@ TLSPH_INLINE bool bond_breaks(const double *xi, const double *xj, const double *
 // the polynomial basis of the corrected gradient
 template <int DIM, int ORDER> struct Basis {
   static constexpr int size = (ORDER == 1) ? DIM : (DIM == 2 ? 5 : 9);
-  TLSPH_INLINE static void eval(const double *s, double *p)
+  template <class T> TLSPH_FORCE_INLINE static void eval(const T *s, T *p)
   {
     for (int d = 0; d < DIM; d++) p[d] = s[d];
     if (ORDER == 2) {
@@ -524,22 +524,22 @@ struct NoScatter {
    q = 0 for separating pairs (a data-dependent branch is mispredicted half
    the time). inv_both = 1 / (r2 (r2 + 0.01 h^2)): one division serves both
    denominators, 1/r2 (hourglass) and 1/(r2 + 0.01 h^2) (viscosity). */
-template <int DIM>
-TLSPH_INLINE double viscous_coefficient(const double *vi, const double *vj, const double *xij,
-                                        double r2, double inv_both, double h, double beta,
-                                        double alpha, double c, double rho, double Vi_wv)
+template <int DIM, class T>
+TLSPH_FORCE_INLINE T viscous_coefficient(const T *vi, const T *vj, const T *xij, T r2, T inv_both,
+                                         double h, double beta, T alpha, T c, T rho, T Vi_wv)
 {
-  double dvX = 0.0;
+  T dvX = T{};
   for (int d = 0; d < DIM; d++) dvX += (vj[d] - vi[d]) * xij[d];
-  const double mu = h * (dvX < 0.0 ? dvX : 0.0) * r2 * inv_both;
-  const double q = rho * mu * (beta * mu - alpha * c);
+  // (a select on every lane of a SIMD type T, tlsph_ell.h)
+  const T mu = h * (dvX < T{} ? dvX : T{}) * r2 * inv_both;
+  const T q = rho * mu * (beta * mu - alpha * c);
   return -0.5 * q * Vi_wv;
 }
 
 /* current separation x_ij = x_j - x_i, r2 = |x_ij|^2 and
    inv_both = 1 / (r2 (r2 + eps2)), eps2 = 0.01 h^2 */
 template <int DIM>
-TLSPH_INLINE void pair_separation(const double *xi, const double *xj, double eps2, double *xij,
+TLSPH_FORCE_INLINE void pair_separation(const double *xi, const double *xj, double eps2, double *xij,
                                   double &r2, double &inv_both)
 {
   r2 = 0.0;
@@ -552,21 +552,51 @@ TLSPH_INLINE void pair_separation(const double *xi, const double *xj, double eps
 
 /* Hourglass: the force on i is sh x_ij, with
    (delta_ij + delta_ji) |x_ij| = ((F_i + F_j) X_ij - 2 x_ij) . x_ij (see
-   hourglass_force()); Fi, Fj are DIM x DIM blocks. Zero when r2 = 0. */
-template <int DIM>
-TLSPH_INLINE double hourglass_coefficient(const double *Fi, const double *Fj, const double *X,
-                                          const double *xij, double r2, double eps2,
-                                          double inv_both, double gamma_Ebar, double Vi_whg)
+   hourglass_force()); Fi, Fj are DIM x DIM blocks. Zero when r2 = 0 (the
+   unguarded form, for a SIMD type T, has no branch: the SIMD step passes a
+   finite inv_both for r2 = 0, where its result is zero). */
+template <int DIM, class T>
+TLSPH_FORCE_INLINE T hourglass_coefficient_unguarded(const T *Fi, const T *Fj, const T *X,
+                                                     const T *xij, T r2, double eps2, T inv_both,
+                                                     T gamma_Ebar, T Vi_whg)
 {
-  if (!(r2 > 0.0)) return 0.0;
-  double ex = 0.0;
+  T ex = T{};
   for (int r = 0; r < DIM; r++) {
-    double e = -2.0 * xij[r];
+    T e = -2.0 * xij[r];
     for (int c2 = 0; c2 < DIM; c2++) e += (Fi[DIM * r + c2] + Fj[DIM * r + c2]) * X[c2];
     ex += e * xij[r];
   }
   return -0.5 * gamma_Ebar * Vi_whg * ex * (r2 + eps2) * inv_both;
 }
+
+template <int DIM>
+TLSPH_FORCE_INLINE double hourglass_coefficient(const double *Fi, const double *Fj, const double *X,
+                                                const double *xij, double r2, double eps2,
+                                                double inv_both, double gamma_Ebar, double Vi_whg)
+{
+  if (!(r2 > 0.0)) return 0.0;
+  return hourglass_coefficient_unguarded<DIM>(Fi, Fj, X, xij, r2, eps2, inv_both, gamma_Ebar,
+                                              Vi_whg);
+}
+
+// GUARD: the scalar form with its test of r2 (double only); else unguarded
+template <int DIM, bool GUARD> struct hourglass_coefficient_select {
+  TLSPH_FORCE_INLINE static double get(const double *Fi, const double *Fj, const double *X,
+                                       const double *xij, double r2, double eps2,
+                                       double inv_both, double gamma_Ebar, double Vi_whg)
+  {
+    return hourglass_coefficient<DIM>(Fi, Fj, X, xij, r2, eps2, inv_both, gamma_Ebar, Vi_whg);
+  }
+};
+template <int DIM> struct hourglass_coefficient_select<DIM, false> {
+  template <class T>
+  TLSPH_FORCE_INLINE static T get(const T *Fi, const T *Fj, const T *X, const T *xij, T r2,
+                                  double eps2, T inv_both, T gamma_Ebar, T Vi_whg)
+  {
+    return hourglass_coefficient_unguarded<DIM>(Fi, Fj, X, xij, r2, eps2, inv_both, gamma_Ebar,
+                                                Vi_whg);
+  }
+};
 
 /* Conservative hourglass control (pair_style ... hourglass conservative,
    doc/pair_tlsph.rst): the gradient of the energy
@@ -610,12 +640,12 @@ TLSPH_INLINE double hourglass_moment(const Rows &x, int i, const Bonds &b, int n
 
 /* the pair force of the conservative form on i from bond ij:
    f = coeff ((F_i + F_j) X_ij - 2 x_ij), coeff = -c_ij / 2 (Fi, Fj: DIM x DIM) */
-template <int DIM>
-TLSPH_INLINE void hourglass_pair_conservative(const double *Fi, const double *Fj, const double *X,
-                                              const double *xij, double coeff, double *f)
+template <int DIM, class T>
+TLSPH_FORCE_INLINE void hourglass_pair_conservative(const T *Fi, const T *Fj, const T *X,
+                                                    const T *xij, T coeff, T *f)
 {
   for (int r = 0; r < DIM; r++) {
-    double e = -2.0 * xij[r];
+    T e = -2.0 * xij[r];
     for (int c = 0; c < DIM; c++) e += (Fi[DIM * r + c] + Fj[DIM * r + c]) * X[c];
     f[r] = coeff * e;
   }
@@ -623,16 +653,15 @@ TLSPH_INLINE void hourglass_pair_conservative(const double *Fi, const double *Fj
 
 /* the hourglass pair force on i from bond ij, HG 1: the thesis's (projected
    on x_ij), HG 2: the conservative form's; gamma_Ebar Vi_whg = c_ij */
-template <int DIM, int HG>
-TLSPH_INLINE void hourglass_pair(const double *Fi, const double *Fj, const double *X,
-                                 const double *xij, double r2, double eps2, double inv_both,
-                                 double gamma_Ebar, double Vi_whg, double *f)
+template <int DIM, int HG, bool GUARD = true, class T>
+TLSPH_FORCE_INLINE void hourglass_pair(const T *Fi, const T *Fj, const T *X, const T *xij, T r2,
+                                       double eps2, T inv_both, T gamma_Ebar, T Vi_whg, T *f)
 {
   if (HG == 2) {
-    hourglass_pair_conservative<DIM>(Fi, Fj, X, xij, -0.5 * gamma_Ebar * Vi_whg, f);
+    hourglass_pair_conservative<DIM>(Fi, Fj, X, xij, T(-0.5 * gamma_Ebar * Vi_whg), f);
   } else {
-    const double sh =
-        hourglass_coefficient<DIM>(Fi, Fj, X, xij, r2, eps2, inv_both, gamma_Ebar, Vi_whg);
+    const T sh = hourglass_coefficient_select<DIM, GUARD>::get(Fi, Fj, X, xij, r2, eps2, inv_both,
+                                                                gamma_Ebar, Vi_whg);
     for (int d = 0; d < DIM; d++) f[d] = sh * xij[d];
   }
 }

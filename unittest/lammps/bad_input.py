@@ -127,6 +127,9 @@ CASES = [
     ("ps_cutfactor_small", ps(f"{H} cutfactor 0.5"), {}, r"pair_style tlsph: cutfactor must be >= 1"),
     ("ps_cutfactor_word", ps(f"{H} cutfactor big"), {}, r"pair_style tlsph: cutfactor needs a number"),
     ("ps_unknown", ps(f"{H} foo 1"), {}, r"pair_style tlsph: unknown keyword 'foo' \(allowed: h, alpha"),
+    ("ps_simd_word", ps(f"{H} simd fast"), {},
+     r"pair_style tlsph: simd must be 'auto', 'no', 'portable', 'avx2' or 'avx512', got 'fast'"),
+    ("ps_simd_missing", ps(f"{H} simd"), {}, r"pair_style tlsph: keyword 'simd' needs a value"),
     # values the kernel or LAMMPS's squared cutoff cannot be computed with
     # (found by the parser fuzzer, doc/fuzz.md)
     ("ps_h_kernel_underflow", ps("h 1e-200"), {}, r"pair_style tlsph: h = 1e-200 with cutfactor 1.1 is out of the range a 2D kernel can be computed in"),
@@ -249,6 +252,8 @@ CASES = [
     ("file_empty", pc("* * empty.tlsph steel steel"), {"empty.tlsph": "# nothing\n"}, r"material 'steel' \(atom type 1\) not found in file 'empty\.tlsph'"),
     # ------------------------------------------------ pair_style tlsph/damage
     ("pd_alpha_d_word", pds(f"{H} alpha_d x"), {}, r"pair_style tlsph/damage: alpha_d needs a number"),
+    ("pd_simd_portable", pds(f"{H} simd portable"), {},
+     r"pair_style tlsph/damage: simd portable is not available for this style \(only pair_style tlsph has the SIMD step; allowed here: simd auto, simd no\)"),
     ("pd_alpha_d_negative", pds(f"{H} alpha_d -1"), {}, r"pair_style tlsph/damage: alpha_d must be >= 0"),
     ("pd_alpha_d_missing", pds(f"{H} alpha_d"), {}, r"pair_style tlsph/damage: alpha_d needs a value"),
     ("pd_criterion_bad", pds(f"{H} criterion shear"), {}, r"criterion must be 'tension', 'absolute' or 'tip', got 'shear'"),

@@ -23,6 +23,7 @@
 #include "library.h"
 #include "modify.h"
 #include "pair.h"
+#include "pair_tlsph.h"
 #include "update.h"
 
 #include "lammps_driver.h"
@@ -152,6 +153,14 @@ struct ForceCase {
   std::string extra = "";
   std::string coeff = "E 210e9 nu 0.3 rho 7800";
   bool periodic_x = false;
+  // lattice cells per edge (2D: nx x ny, 3D: nx x ny x nz) and whether the
+  // step computes the virial (thermo press: the SIMD step then runs its
+  // scalar gather form, so the SIMD tests switch it off)
+  int nx = 0, ny = 0, nz = 0;
+  bool virial = true;
+  int ntypes = 1;    // > 1: the upper half of the particles is type 2
+  std::string coeff2 = "";    // type 2's material (default: coeff)
+  int steps = 0;              // run steps (the setup step computes the virial)
 };
 
 // the density of the case's material (its 'rho' value): the masses are rho*volume
@@ -169,13 +178,18 @@ std::string force_script(const ForceCase &c)
   snprintf(mass, sizeof(mass), "variable mass equal %.17g\n",
            case_rho(c) * (c.dim == 2 ? 1.0e-6 : 1.0e-9));
   s += mass;
+  const int nx = c.nx ? c.nx : (c.dim == 2 ? 8 : 6), ny = c.ny ? c.ny : (c.dim == 2 ? 6 : 4),
+            nz = c.nz ? c.nz : 3;
+  s += "variable nx equal " + std::to_string(nx) + "\nvariable ny equal " + std::to_string(ny) +
+      "\nvariable nz equal " + std::to_string(nz) + "\nvariable ntypes equal " +
+      std::to_string(c.ntypes) + "\n";
   if (c.dim == 2) {
     // open boundaries in x and y: corner and edge particles included
     s += c.periodic_x ? "dimension 2\nboundary p s p\n" : "dimension 2\nboundary s s p\n";
     s += R"(atom_style peri
 lattice sq 0.001
-region box block 0 8 0 6 -0.5 0.5
-create_box 1 box
+region box block 0 ${nx} 0 ${ny} -0.5 0.5
+create_box ${ntypes} box
 create_atoms 1 box
 set type 1 volume 1e-6
 set type 1 mass ${mass}
@@ -192,8 +206,8 @@ velocity all set v_vx v_vy 0 units box
 boundary p s s
 atom_style peri
 lattice sc 0.001
-region box block 0 6 0 4 0 3
-create_box 1 box
+region box block 0 ${nx} 0 ${ny} 0 ${nz}
+create_box ${ntypes} box
 create_atoms 1 box
 set type 1 volume 1e-9
 set type 1 mass ${mass}
@@ -211,11 +225,17 @@ velocity all set v_vx v_vy v_vz units box
   snprintf(buf, sizeof(buf), "pair_style %s h 0.00133 alpha %g beta %g gamma %g %s\n",
            c.style.c_str(), c.alpha, c.beta, c.gamma, c.extra.c_str());
   s += buf;
-  s += "pair_coeff 1 1 " + c.coeff + "\n";
-  s += R"(fix 1 all nve
-thermo_style custom step pe press
-run 0
-)";
+  if (c.ntypes > 1) {
+    // the upper half of the body is type 2 (same volume and mass)
+    s += "region upper block INF INF " + std::to_string(ny / 2) + " INF INF INF\n";
+    s += "set region upper type 2\n";
+  }
+  s += "pair_coeff * * " + c.coeff + "\n";
+  if (!c.coeff2.empty()) s += "pair_coeff 2 2 " + c.coeff2 + "\n";
+  s += "fix 1 all nve\n";
+  if (c.steps) s += "timestep 1e-8\n";
+  s += c.virial ? "thermo_style custom step pe press\n" : "thermo_style custom step pe\n";
+  s += "run " + std::to_string(c.steps) + "\n";
   return s;
 }
 
@@ -223,6 +243,9 @@ struct ForceResult {
   ById f;
   double pe;
   double virial[6];
+  ById f_hg, f_visc;       // the bond fix's tallies
+  int simd = 0;            // the SIMD step's instruction set (PairTLSPH::SIMD_*)
+  int kinds[3] = {0, 0, 0};    // its chunks: gather, stencil, pattern
 };
 
 ForceResult run_forces(const ForceCase &c)
@@ -233,6 +256,18 @@ ForceResult run_forces(const ForceCase &c)
   r.f = per_atom(lmp, "f");
   r.pe = lmp->force->pair->eng_vdwl;
   for (int k = 0; k < 6; k++) r.virial[k] = lmp->force->pair->virial[k];
+  if (auto *pt = dynamic_cast<LAMMPS_NS::PairTLSPH *>(lmp->force->pair)) {
+    r.simd = pt->simd_in_use();
+    int npat;
+    pt->simd_chunks(r.kinds, &npat);
+  }
+  if (FixTLSPHBonds *b = bond_fix(lmp)) {
+    for (int i = 0; i < lmp->atom->nlocal; i++) {
+      const long t = lmp->atom->tag[i];
+      r.f_hg[t] = {b->f_hg[i][0], b->f_hg[i][1], b->f_hg[i][2]};
+      r.f_visc[t] = {b->f_visc[i][0], b->f_visc[i][1], b->f_visc[i][2]};
+    }
+  }
   delete lmp;
   return r;
 }
@@ -474,6 +509,139 @@ TEST(Forces, all_terms_active_2d)
 TEST(Forces, all_terms_active_3d)
 {
   check_terms_active(case_3d);
+}
+
+/* ----------------------------------------------------------------------
+   the SIMD step (pair_style tlsph ... simd, pair_tlsph_simd.cpp): each
+   instruction set this CPU runs gives the forces, the energy and the bond
+   fix's tallies of the scalar step ('simd no') to round-off, on lattices
+   large enough to have all three kinds of chunks (a lattice interior read
+   from shared patterns, stencil chunks, gathered boundary chunks)
+------------------------------------------------------------------------- */
+
+void check_simd(ForceCase c, bool expect_patterns = true, bool virial = false)
+{
+  // LAMMPS's setup step computes the virial (the scalar gather form adds
+  // it): two steps, the last one's forces (a step of 1e-8 s moves nothing
+  // visibly), and with 'virial' the virial of that step too
+  c.virial = virial;
+  c.steps = 2;
+  const std::string extra = c.extra;
+  c.extra = extra + " simd no";
+  const ForceResult ref = checked_forces(c);
+  EXPECT_EQ(ref.simd, LAMMPS_NS::PairTLSPH::SIMD_NO);
+  const double fmax = largest(ref.f);
+  const double hmax = std::max(largest(ref.f_hg), 1e-300);
+  const double vmax = std::max(largest(ref.f_visc), 1e-300);
+  int ran = 0;
+  for (int isa : {LAMMPS_NS::PairTLSPH::SIMD_PORTABLE, LAMMPS_NS::PairTLSPH::SIMD_AVX2,
+                  LAMMPS_NS::PairTLSPH::SIMD_AVX512}) {
+    if (!LAMMPS_NS::PairTLSPH::simd_supported(isa)) continue;
+    c.extra = extra + " simd " + LAMMPS_NS::PairTLSPH::simd_name(isa);
+    const ForceResult r = checked_forces(c);
+    SCOPED_TRACE(c.extra);
+    ran++;
+    EXPECT_EQ(r.simd, isa);
+    EXPECT_GT(r.kinds[0], 0) << "no gathered chunk";
+    if (expect_patterns) {
+      EXPECT_GT(r.kinds[2], 0) << "no pattern chunk";
+    }
+    EXPECT_LE(max_diff(r.f, ref.f), 1.0e-12 * fmax);
+    EXPECT_NEAR(r.pe, ref.pe, 1.0e-12 * std::fabs(ref.pe));
+    EXPECT_LE(max_diff(r.f_hg, ref.f_hg), 1.0e-12 * hmax);
+    EXPECT_LE(max_diff(r.f_visc, ref.f_visc), 1.0e-12 * vmax);
+    double wmax = 0.0;
+    for (int k = 0; k < 6; k++) wmax = std::max(wmax, std::fabs(ref.virial[k]));
+    if (virial) EXPECT_GT(wmax, 0.0);
+    for (int k = 0; k < 6; k++) EXPECT_NEAR(r.virial[k], ref.virial[k], 1.0e-12 * wmax) << k;
+  }
+  EXPECT_GE(ran, 1);
+}
+
+ForceCase simd_case(int dim, bool newton = true)
+{
+  ForceCase c{dim, 1.0, 0.5, 2.5, newton};
+  c.nx = dim == 2 ? 40 : 14;
+  c.ny = dim == 2 ? 30 : 12;
+  c.nz = 10;
+  return c;
+}
+
+TEST(Simd, forces_2d)
+{
+  check_simd(simd_case(2));
+}
+
+TEST(Simd, forces_2d_newton_off)
+{
+  check_simd(simd_case(2, false));
+}
+
+TEST(Simd, forces_3d)
+{
+  check_simd(simd_case(3));
+}
+
+TEST(Simd, forces_linear)
+{
+  for (int dim : {2, 3}) {
+    ForceCase c = simd_case(dim);
+    c.extra = "gradient linear";
+    check_simd(c);
+  }
+}
+
+TEST(Simd, forces_conservative_hourglass)
+{
+  for (int dim : {2, 3}) {
+    ForceCase c = simd_case(dim);
+    c.extra = "hourglass conservative";
+    check_simd(c);
+  }
+}
+
+TEST(Simd, forces_without_hourglass_or_viscosity)
+{
+  ForceCase c = simd_case(2);
+  c.gamma = 0.0;
+  check_simd(c);
+  c = simd_case(2);
+  c.alpha = c.beta = 0.0;
+  check_simd(c);
+}
+
+TEST(Simd, forces_orthotropic)
+{
+  for (int dim : {2, 3}) {
+    ForceCase c = simd_case(dim);
+    c.coeff = ply30;
+    check_simd(c);
+  }
+}
+
+// two materials: the per-pair averages of the force pass (MULTI)
+TEST(Simd, forces_two_materials)
+{
+  for (int dim : {2, 3}) {
+    ForceCase c = simd_case(dim);
+    c.ntypes = 2;
+    c.coeff2 = "E 70e9 nu 0.25 rho 7800";
+    check_simd(c);
+  }
+}
+
+// a step with the virial (thermo press) and the forces of the SIMD step
+TEST(Simd, virial)
+{
+  check_simd(simd_case(2), true, true);
+  check_simd(simd_case(3), true, true);
+}
+
+TEST(Simd, forces_periodic)
+{
+  ForceCase c = simd_case(2);
+  c.periodic_x = true;
+  check_simd(c);
 }
 
 /* ----------------------------------------------------------------------

@@ -62,6 +62,8 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   void work_to_host() override;
   void report_copies(bigint nsteps) override;
   bool on_device() const override { return this->execution_space == Device; }
+  // the Kokkos kernels are the step (no host SIMD step)
+  bool simd_capable() const override { return false; }
   void host_sync(unsigned int mask) override;
   void host_modified(unsigned int mask) override;
   void count_host_code(unsigned int mask, int to_host);

@@ -1,0 +1,596 @@
+/* ----------------------------------------------------------------------
+   USER-TLSPH: the SIMD step of pair_style tlsph (tlsph_ell.h): the
+   sliced-ELLPACK bond layout, built after every bond-cache build, and the
+   drivers of its two bond loops, compiled for AVX-512, for AVX2 + FMA and
+   for the build's own baseline (portable); the one to run is chosen at
+   init from the CPU (pair_style ... simd auto) or by the user.
+------------------------------------------------------------------------- */
+
+// the vector type of tlsph_ell_vec.h passes by value only between inlined
+// functions (instantiated here from tlsph_particle.h): no ABI to keep
+#if defined(__GNUC__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+#include "pair_tlsph.h"
+
+#include "atom.h"
+#include "atom_vec.h"
+#include "domain.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_tlsph_bonds.h"
+#include "force.h"
+#include "memory.h"
+#include "pair_tlsph_step.h"
+#include "tlsph_ell_vec.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(__CUDACC__)
+#define TLSPH_ELL_X86 1
+#define TLSPH_ATTR_AVX2 __attribute__((target("avx2,fma,tune=haswell")))
+#define TLSPH_ATTR_AVX512 \
+  __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,tune=skylake-avx512,prefer-vector-width=512")))
+#else
+#define TLSPH_ELL_X86 0
+#endif
+
+namespace {
+/* Bond values of a stencil chunk's lanes (and of two chunks) that agree to
+   this fraction of the quantity's largest magnitude in the chunk are one
+   pattern. On a lattice they differ only by the round-off of each
+   particle's gradient-correction solve (its sums taken in another order:
+   measured up to 1e-13 on the bench blocks), so sharing one particle's
+   values changes the step by round-off. */
+constexpr double ELL_SHARE_TOL = 1.0e-13;
+using TLSPH::EllArrays;
+using TLSPH::EllParticles;
+using DeformFn = void (*)(const EllArrays &, const EllParticles &, double *);
+using ForceFn = void (*)(const EllArrays &, const EllParticles &);
+
+// the drivers: every chunk, in order, by its kind; stencil chunks in
+// vectors of W lanes (one copy per instruction set)
+#define TLSPH_ELL_DRIVERS(NS, ATTR, W)                                                       \
+  namespace NS {                                                                             \
+  template <int DIM>                                                                         \
+  ATTR void deformation(const EllArrays &e, const EllParticles &p, double *F)               \
+  {                                                                                          \
+    for (int c = 0; c < e.nchunk; c++) {                                                     \
+      if (e.kind[c] == EllArrays::PATTERN) {                                                 \
+        const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                     \
+        for (int h = 0; h < TLSPH::ELL_C; h += W)                                            \
+          TLSPH::ell_deformation_stencil<DIM, W>(sl, c, h, p, F);                            \
+      } else if (e.kind[c] == EllArrays::STENCIL) {                                          \
+        const auto sl = TLSPH::lane_slots<DIM>(e, c);                                        \
+        for (int h = 0; h < TLSPH::ELL_C; h += W)                                            \
+          TLSPH::ell_deformation_stencil<DIM, W>(sl, c, h, p, F);                            \
+      } else                                                                                 \
+        TLSPH::ell_deformation_chunk<DIM, 0>(e, c, p, F);                                    \
+    }                                                                                        \
+  }                                                                                          \
+  template <int DIM, int ORDER, int HG, int VISC, int MULTI>                                 \
+  ATTR void forces(const EllArrays &e, const EllParticles &p)                               \
+  {                                                                                          \
+    for (int c = 0; c < e.nchunk; c++) {                                                     \
+      if (e.kind[c] == EllArrays::PATTERN) {                                                 \
+        const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                     \
+        for (int h = 0; h < TLSPH::ELL_C; h += W)                                            \
+          TLSPH::ell_force_stencil<DIM, ORDER, HG, VISC, MULTI, W>(sl, c, h, p);             \
+      } else if (e.kind[c] == EllArrays::STENCIL) {                                          \
+        const auto sl = TLSPH::lane_slots<DIM>(e, c);                                        \
+        for (int h = 0; h < TLSPH::ELL_C; h += W)                                            \
+          TLSPH::ell_force_stencil<DIM, ORDER, HG, VISC, MULTI, W>(sl, c, h, p);             \
+      } else                                                                                 \
+        TLSPH::ell_force_chunk<DIM, ORDER, HG, VISC, MULTI, 0>(e, c, p);                     \
+    }                                                                                        \
+  }                                                                                          \
+  }
+
+TLSPH_ELL_DRIVERS(ell_portable, , 2)
+#if TLSPH_ELL_X86
+TLSPH_ELL_DRIVERS(ell_avx2, TLSPH_ATTR_AVX2, 4)
+TLSPH_ELL_DRIVERS(ell_avx512, TLSPH_ATTR_AVX512, 8)
+#endif
+
+template <int DIM> DeformFn pick_deformation(int isa)
+{
+#if TLSPH_ELL_X86
+  if (isa == PairTLSPH::SIMD_AVX512) return ell_avx512::deformation<DIM>;
+  if (isa == PairTLSPH::SIMD_AVX2) return ell_avx2::deformation<DIM>;
+#endif
+  (void) isa;
+  return ell_portable::deformation<DIM>;
+}
+
+template <int DIM, int ORDER, int HG, int VISC, int MULTI> ForceFn pick_forces(int isa)
+{
+#if TLSPH_ELL_X86
+  if (isa == PairTLSPH::SIMD_AVX512) return ell_avx512::forces<DIM, ORDER, HG, VISC, MULTI>;
+  if (isa == PairTLSPH::SIMD_AVX2) return ell_avx2::forces<DIM, ORDER, HG, VISC, MULTI>;
+#endif
+  (void) isa;
+  return ell_portable::forces<DIM, ORDER, HG, VISC, MULTI>;
+}
+
+template <int DIM, int ORDER, int HG, int VISC>
+ForceFn pick_forces_multi(int isa, int multi)
+{
+  return multi ? pick_forces<DIM, ORDER, HG, VISC, 1>(isa)
+               : pick_forces<DIM, ORDER, HG, VISC, 0>(isa);
+}
+
+template <int DIM, int ORDER, int HG>
+ForceFn pick_forces_visc(int isa, int visc, int multi)
+{
+  return visc ? pick_forces_multi<DIM, ORDER, HG, 1>(isa, multi)
+              : pick_forces_multi<DIM, ORDER, HG, 0>(isa, multi);
+}
+
+template <int DIM, int ORDER> ForceFn pick_forces_hg(int isa, int hg, int visc, int multi)
+{
+  if (hg == 1) return pick_forces_visc<DIM, ORDER, 1>(isa, visc, multi);
+  if (hg == 2) return pick_forces_visc<DIM, ORDER, 2>(isa, visc, multi);
+  return pick_forces_visc<DIM, ORDER, 0>(isa, visc, multi);
+}
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+const char *PairTLSPH::simd_name(int isa)
+{
+  switch (isa) {
+    case SIMD_NO: return "no";
+    case SIMD_PORTABLE: return "portable";
+    case SIMD_AVX2: return "avx2";
+    case SIMD_AVX512: return "avx512";
+    default: return "auto";
+  }
+}
+
+// what this CPU can run of the compiled instruction sets
+bool PairTLSPH::simd_supported(int isa)
+{
+  if (isa == SIMD_NO || isa == SIMD_PORTABLE) return true;
+#if TLSPH_ELL_X86
+  __builtin_cpu_init();
+  if (isa == SIMD_AVX2) return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  if (isa == SIMD_AVX512)
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+        __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") &&
+        __builtin_cpu_supports("fma");
+#endif
+  return false;
+}
+
+/* the instruction set of the step (init_style): the user's choice, checked
+   against the CPU, or for 'auto' the widest this CPU runs; SIMD_NO for the
+   styles that do not have the SIMD step (simd_capable) */
+void PairTLSPH::select_simd()
+{
+  simd_isa = SIMD_NO;
+  if (simd_request == SIMD_NO) return;
+  if (!simd_capable()) {
+    if (simd_request != SIMD_AUTO)
+      error->all(FLERR, "pair_style {}: simd {} is not available for this style (only "
+                        "pair_style tlsph has the SIMD step; allowed here: simd auto, simd no)",
+                 force->pair_style, simd_name(simd_request));
+    return;
+  }
+  if (simd_request == SIMD_AUTO) {
+    simd_isa = simd_supported(SIMD_AVX512) ? SIMD_AVX512
+        : simd_supported(SIMD_AVX2)        ? SIMD_AVX2
+                                           : SIMD_PORTABLE;
+    return;
+  }
+  if (!simd_supported(simd_request))
+    error->all(FLERR, "pair_style tlsph: simd {}: this CPU (or this build) does not support it "
+                      "(allowed: simd auto, no, portable{}{})", simd_name(simd_request),
+               simd_supported(SIMD_AVX2) ? ", avx2" : "", simd_supported(SIMD_AVX512) ? ", avx512" : "");
+  simd_isa = simd_request;
+}
+
+/* The SIMD step's data after every build of the bond cache (tlsph_ell.h):
+   the step's particle order (local, then ghost particles, each sorted by
+   their reference position x0c, z then y then x, ties by index), x0c as
+   columns, every particle's bonds sorted by partner in that order, the
+   sliced-ELLPACK layout with the reverse weights c_ij = V_i w_ij as the
+   scalar gather form computes them (LeanBonds::reverse_weight), and which
+   chunks are stencil chunks. */
+void PairTLSPH::build_ell()
+{
+  constexpr int C = TLSPH::ELL_C;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int nv = dim + 3;
+
+  // the order
+  if (nall > ell_nperm) {
+    ell_nperm = nall + nall / 8 + C;
+    memory->destroy(ell_perm);
+    memory->destroy(ell_inv);
+    memory->create(ell_perm, ell_nperm, "tlsph:ell_perm");
+    memory->create(ell_inv, ell_nperm, "tlsph:ell_inv");
+    // columns: x, v, x0c (dim each) and the packed rows
+    memory->destroy(ell_soa);
+    memory->create(ell_soa, (bigint) ell_nperm * (3 * dim + packed_size()), "tlsph:ell_soa");
+  }
+  const double *x0 = x0c[0];
+  const auto before = [&](int a, int b) {
+    for (int d = dim - 1; d >= 0; d--)
+      if (x0[3 * a + d] != x0[3 * b + d]) return x0[3 * a + d] < x0[3 * b + d];
+    return a < b;
+  };
+  for (int i = 0; i < nall; i++) ell_perm[i] = i;
+  std::sort(ell_perm, ell_perm + nlocal, before);
+  std::sort(ell_perm + nlocal, ell_perm + nall, before);
+  for (int k = 0; k < nall; k++) ell_inv[ell_perm[k]] = k;
+  const int ns = ell_nperm;
+  double *x0s = ell_soa + (bigint) 2 * dim * ns;
+  for (int k = 0; k < nall; k++)
+    for (int d = 0; d < dim; d++) x0s[(bigint) d * ns + k] = x0[3 * ell_perm[k] + d];
+
+  // the layout: each chunk's blocks are made in a scratch copy, then kept
+  // (GATHER, STENCIL) or replaced by a pattern (PATTERN)
+  const int nchunk = (nlocal + C - 1) / C;
+  if (nchunk + 1 > ell_nstart) {
+    ell_nstart = nchunk + 1 + nchunk / 8 + 8;
+    memory->destroy(ell.start);
+    memory->destroy(ell.kind);
+    memory->destroy(ell.pat);
+    memory->create(ell.start, ell_nstart, "tlsph:ell_start");
+    memory->create(ell.kind, ell_nstart, "tlsph:ell_kind");
+    memory->create(ell.pat, ell_nstart, "tlsph:ell_pat");
+  }
+  ell.nchunk = nchunk;
+  std::vector<std::pair<int, int>> order;    // (partner in the step's order, bond)
+  std::vector<int> sj;
+  std::vector<double> sv;
+  // chunk c into sj (C per slot) and sv (nv C per slot); returns its width
+  const auto fill = [&](int c) {
+    int w = 0;
+    for (int l = 0; l < C && c * C + l < nlocal; l++) w = std::max(w, nbond[ell_perm[c * C + l]]);
+    sj.assign((size_t) C * w, 0);
+    sv.assign((size_t) nv * C * w, 0.0);
+    for (int l = 0; l < C; l++) {
+      const int ii = c * C + l;
+      const int iv = ii < nlocal ? ii : nlocal - 1;
+      const int i = ii < nlocal ? ell_perm[ii] : -1;
+      const int n = i >= 0 ? nbond[i] : 0;
+      const int s = i >= 0 ? bond_start[i] : 0;
+      order.resize(n);
+      for (int m = 0; m < n; m++) order[m] = {ell_inv[lean.j[s + m]], m};
+      std::sort(order.begin(), order.end());
+      for (int m = 0; m < w; m++) {
+        double *vb = sv.data() + (size_t) nv * C * m;
+        if (m < n) {
+          const int mm = order[m].second;
+          const bigint e = s + mm;
+          sj[(size_t) C * m + l] = order[m].first;
+          for (int k = 0; k < dim; k++) vb[C * k + l] = lean.g[dim * e + k];
+          vb[C * dim + l] = lean.w[2 * e];
+          vb[C * (dim + 1) + l] = lean.w[2 * e + 1];
+          vb[C * (dim + 2) + l] =
+              (dim == 2) ? bonds_of<2>(i).reverse_weight(mm) : bonds_of<3>(i).reverse_weight(mm);
+        } else {
+          sj[(size_t) C * m + l] = iv;    // padding: the particle itself, zero weights
+        }
+      }
+    }
+    return w;
+  };
+  // the kind of the chunk in sj, sv: a stencil chunk has C particles and in
+  // every slot partners j[0] + l; a pattern chunk also the same values
+  // (bitwise) in every lane
+  const auto classify = [&](int c, int w) {
+    if ((c + 1) * C > nlocal) return (int) EllArrays::GATHER;
+    for (int m = 0; m < w; m++)
+      for (int l = 1; l < C; l++)
+        if (sj[(size_t) C * m + l] != sj[(size_t) C * m] + l) return (int) EllArrays::GATHER;
+    // scales: the largest magnitude of each quantity in the chunk (the
+    // gradient's components together)
+    double scale[TLSPH::EllShape<3>::NV] = {0, 0, 0, 0, 0, 0};
+    for (size_t m = 0; m < (size_t) w; m++)
+      for (int k = 0; k < nv; k++)
+        for (int l = 0; l < C; l++) {
+          const int kk = k < dim ? 0 : k;
+          scale[kk] = std::max(scale[kk], std::fabs(sv[nv * C * m + C * k + l]));
+        }
+    double worst = 0.0;
+    for (int m = 0; m < w; m++)
+      for (int k = 0; k < nv; k++) {
+        const double *q = sv.data() + (size_t) nv * C * m + C * k;
+        for (int l = 1; l < C; l++)
+          if (q[l] != q[0]) worst = std::max(worst, std::fabs(q[l] - q[0]) / scale[k < dim ? 0 : k]);
+      }
+    return worst <= ELL_SHARE_TOL ? (int) EllArrays::PATTERN : (int) EllArrays::STENCIL;
+  };
+  // pass 1: kinds, patterns, the blocks kept
+  std::map<std::string, std::vector<int>> patterns;
+  int npat = 0;
+  std::vector<int> pat_off;
+  std::vector<double> pat_v;
+  std::vector<int> pat_start(1, 0);
+  bigint nblock = 0;
+  for (int c = 0; c < nchunk; c++) {
+    const int w = fill(c);
+    ell.kind[c] = classify(c, w);
+    ell.pat[c] = -1;
+    if (ell.kind[c] != EllArrays::PATTERN) {
+      nblock += w;
+      continue;
+    }
+    // the pattern's key: the offsets of the partners and the values of lane 0
+    std::vector<int> off(w);
+    std::vector<double> val((size_t) nv * w);
+    for (int m = 0; m < w; m++) {
+      off[m] = sj[(size_t) C * m] - c * C;
+      for (int k = 0; k < nv; k++) val[(size_t) nv * m + k] = sv[(size_t) nv * C * m + C * k];
+    }
+    // an existing pattern with these offsets and values within the tolerance
+    const std::string key(reinterpret_cast<const char *>(off.data()), sizeof(int) * off.size());
+    auto &cands = patterns[key];
+    int found = -1;
+    for (int q : cands) {
+      const double *pv = pat_v.data() + (size_t) nv * pat_start[q];
+      double scale[TLSPH::EllShape<3>::NV] = {0, 0, 0, 0, 0, 0}, worst = 0.0;
+      for (size_t e = 0; e < val.size(); e++) {
+        const int k = (int) (e % nv), kk = k < dim ? 0 : k;
+        scale[kk] = std::max(scale[kk], std::fabs(pv[e]));
+      }
+      for (size_t e = 0; e < val.size(); e++) {
+        const int k = (int) (e % nv), kk = k < dim ? 0 : k;
+        if (val[e] != pv[e]) worst = std::max(worst, std::fabs(val[e] - pv[e]) / scale[kk]);
+      }
+      if (worst <= ELL_SHARE_TOL) {
+        found = q;
+        break;
+      }
+    }
+    if (found < 0) {
+      found = npat++;
+      cands.push_back(found);
+      pat_off.insert(pat_off.end(), off.begin(), off.end());
+      pat_v.insert(pat_v.end(), val.begin(), val.end());
+      pat_start.push_back((int) pat_off.size());
+    }
+    ell.pat[c] = found;
+  }
+  ell.npat = npat;
+  memory->destroy(ell.pat_start);
+  memory->destroy(ell.pat_off);
+  memory->destroy(ell.pat_v);
+  memory->create(ell.pat_start, ell.npat + 1, "tlsph:ell_pat_start");
+  memory->create(ell.pat_off, std::max<size_t>(pat_off.size(), 1), "tlsph:ell_pat_off");
+  memory->create(ell.pat_v, std::max<size_t>(pat_v.size(), 1), "tlsph:ell_pat_v");
+  std::copy(pat_start.begin(), pat_start.end(), ell.pat_start);
+  std::copy(pat_off.begin(), pat_off.end(), ell.pat_off);
+  std::copy(pat_v.begin(), pat_v.end(), ell.pat_v);
+  if (nblock > ell_nblock_max) {
+    ell_nblock_max = nblock + nblock / 8 + 16;
+    memory->destroy(ell.j);
+    memory->destroy(ell.v);
+    memory->create(ell.j, ell_nblock_max * C, "tlsph:ell_j");
+    memory->create(ell.v, ell_nblock_max * C * nv, "tlsph:ell_v");
+  }
+  // pass 2: the blocks of the chunks that are not patterns
+  ell.start[0] = 0;
+  for (int c = 0; c < nchunk; c++) {
+    int w = 0;
+    if (ell.kind[c] != EllArrays::PATTERN) {
+      w = fill(c);
+      std::copy(sj.begin(), sj.end(), ell.j + (bigint) C * ell.start[c]);
+      std::copy(sv.begin(), sv.end(), ell.v + (bigint) nv * C * ell.start[c]);
+    }
+    ell.start[c + 1] = ell.start[c] + w;
+  }
+  ell_pattern_bonds = 0;
+  for (int c = 0; c < nchunk; c++)
+    if (ell.kind[c] == EllArrays::PATTERN) ell_pattern_bonds += C * (ell.pat_start[ell.pat[c] + 1] - ell.pat_start[ell.pat[c]]);
+  ell_version = cache_version;
+  if (report_simd) {
+    // once per run: how the particles were laid out (rank sums)
+    report_simd = 0;
+    bigint mine[5] = {0, 0, 0, ell.npat, nblock}, all[5];
+    for (int c = 0; c < nchunk; c++) mine[ell.kind[c]]++;
+    MPI_Allreduce(mine, all, 5, MPI_LMP_BIGINT, MPI_SUM, world);
+    if (comm->me == 0)
+      utils::logmesg(lmp, "pair tlsph: SIMD step ({}, {} lanes): {} chunks of particles, {} from "
+                          "{} shared bond pattern(s), {} stencil, {} gathered\n",
+                     simd_name(simd_isa), C, all[0] + all[1] + all[2], all[2], all[3], all[1],
+                     all[0]);
+  }
+}
+
+/* The local particles in the SIMD step's order: sorted by their reference
+   position in the image of their current one (x0c of set_reference_images),
+   z, then y, then x, ties by tag: the rows of a lattice become runs of
+   consecutive indices. Called before every exchange (the bond fix's
+   pre_exchange); moves the atoms as LAMMPS's Atom::sort does (AtomVec::copy,
+   which carries the fixes' per-atom data, the bonds included). */
+void PairTLSPH::sort_particles()
+{
+  if (simd_isa == SIMD_NO) return;
+  const int nlocal = atom->nlocal;
+  if (nlocal < 2) return;
+  double **x = atom->x, **x0 = atom->x0;
+  tagint *tag = atom->tag;
+  const bool periodic = domain->xperiodic || domain->yperiodic || domain->zperiodic;
+  std::vector<double> key(3 * (size_t) nlocal);
+  for (int i = 0; i < nlocal; i++) {
+    double u[3] = {x[i][0] - x0[i][0], x[i][1] - x0[i][1], x[i][2] - x0[i][2]};
+    double um[3] = {u[0], u[1], u[2]};
+    if (periodic) domain->minimum_image(um[0], um[1], um[2]);
+    for (int d = 0; d < 3; d++) key[3 * i + d] = (um[d] == u[d]) ? x0[i][d] : x0[i][d] + (u[d] - um[d]);
+  }
+  std::vector<int> permute(nlocal);
+  for (int i = 0; i < nlocal; i++) permute[i] = i;
+  std::sort(permute.begin(), permute.end(), [&](int a, int b) {
+    for (int d = dim - 1; d >= 0; d--)
+      if (key[3 * a + d] != key[3 * b + d]) return key[3 * a + d] < key[3 * b + d];
+    return tag[a] < tag[b];
+  });
+  // permute[I] = J: the I-th atom of the new order is the J-th of the old
+  bool sorted = true;
+  for (int i = 0; i < nlocal && sorted; i++) sorted = permute[i] == i;
+  if (sorted) return;
+  // the spare slot of the cycles: behind the ghosts, which are still there
+  // (Atom::sort runs after the exchange, with none: it uses slot nlocal;
+  // here that would overwrite a ghost, whose tag the exchange's map_clear
+  // then could not find, leaving a stale entry in the atom map)
+  const int spare = nlocal + atom->nghost;
+  if (spare >= atom->nmax) atom->avec->grow(spare + 1);
+  std::vector<int> current(nlocal);
+  for (int i = 0; i < nlocal; i++) current[i] = i;
+  AtomVec *avec = atom->avec;
+  for (int i = 0; i < nlocal; i++) {
+    if (current[i] == permute[i]) continue;
+    avec->copy(i, spare, 0);
+    int empty = i;
+    while (permute[empty] != i) {
+      avec->copy(permute[empty], empty, 0);
+      empty = current[empty] = permute[empty];
+    }
+    avec->copy(spare, empty, 0);
+    current[empty] = permute[empty];
+  }
+}
+
+/* the columns of x and v (every step) and of the packed rows of particles
+   k0 <= k < k1 of the step's order */
+void PairTLSPH::ell_columns_xv()
+{
+  const int nall = atom->nlocal + atom->nghost;
+  const int ns = ell_nperm;
+  double *xs = ell_soa, *vs = ell_soa + (bigint) dim * ns;
+  double **x = atom->x, **v = atom->v;
+  for (int k = 0; k < nall; k++) {
+    const int i = ell_perm[k];
+    for (int d = 0; d < dim; d++) {
+      xs[(bigint) d * ns + k] = x[i][d];
+      vs[(bigint) d * ns + k] = v[i][d];
+    }
+  }
+}
+
+void PairTLSPH::ell_columns_pk(int k0, int k1)
+{
+  const int ns = ell_nperm, np = packed_size();
+  double *pks = ell_soa + (bigint) 3 * dim * ns;
+  for (int k = k0; k < k1; k++) {
+    const double *row = pk[ell_perm[k]];
+    for (int q = 0; q < np; q++) pks[(bigint) q * ns + k] = row[q];
+  }
+}
+
+TLSPH::EllParticles PairTLSPH::ell_particles()
+{
+  const int ns = ell_nperm;
+  EllParticles p;
+  p.ns = ns;
+  p.xs = ell_soa;
+  p.vs = ell_soa + (bigint) dim * ns;
+  p.x0s = ell_soa + (bigint) 2 * dim * ns;
+  p.pks = ell_soa + (bigint) 3 * dim * ns;
+  p.perm = ell_perm;
+  p.vfrac = atom->vfrac;
+  p.fown = fown[0];
+  p.type = atom->type;
+  p.pm = pairmat.data();
+  p.f = atom->f[0];
+  p.f_hg = bonds->f_hg[0];
+  p.f_visc = bonds->f_visc[0];
+  p.nlocal = atom->nlocal;
+  p.h = h;
+  p.beta = beta;
+  p.gamma = gamma;
+  return p;
+}
+
+/* pass (1) of the SIMD step: F by chunks, then the per-particle stress
+   (as compute_deformation) and the packed rows as columns */
+template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
+{
+  const int nlocal = atom->nlocal;
+  ell_columns_xv();
+  if (nlocal > 0) pick_deformation<DIM>(simd_isa)(ell, ell_particles(), F[0]);
+  const bool need_K = viscosity_active();
+  const int ns = ell_nperm, np = packed_size();
+  double *pks = ell_soa + (bigint) 3 * DIM * ns;
+  for (int k = 0; k < nlocal; k++) {
+    const int i = ell_perm[k];
+    particle_stress<DIM, ORDER, LAWS>(i, need_K);
+    const double *row = pk[i];
+    for (int q = 0; q < np; q++) pks[(bigint) q * ns + k] = row[q];
+  }
+}
+
+void PairTLSPH::simd_deformation_pass()
+{
+  const int laws = any_orthotropic ? 1 : 0;
+  if (dim == 2) {
+    if (order == 1) laws ? simd_deformation<2, 1, 1>() : simd_deformation<2, 1, 0>();
+    else laws ? simd_deformation<2, 2, 1>() : simd_deformation<2, 2, 0>();
+  } else {
+    if (order == 1) laws ? simd_deformation<3, 1, 1>() : simd_deformation<3, 1, 0>();
+    else laws ? simd_deformation<3, 2, 1>() : simd_deformation<3, 2, 0>();
+  }
+}
+
+// pass (3) of the SIMD step (gather form); hg: 0 none, 1 thesis, 2 conservative
+void PairTLSPH::simd_forces(int hg, int visc)
+{
+  const int nlocal = atom->nlocal;
+  double **f_hg = bonds->f_hg;
+  if (hg == 2)
+    for (int i = 0; i < nlocal; i++) f_hg[i][0] = f_hg[i][1] = f_hg[i][2] = 0.0;
+  // the ghosts' packed rows, as the forward communication left them
+  ell_columns_pk(nlocal, nlocal + atom->nghost);
+  if (nlocal == 0) return;
+  // one material (every type's force-pass numbers equal): no per-pair lookup
+  int multi = 0;
+  for (int t = 2; t <= atom->ntypes; t++)
+    if (std::memcmp(&pairmat[t], &pairmat[1], sizeof(TLSPH::PairMaterial)) != 0) multi = 1;
+  ForceFn fn;
+  if (dim == 2) fn = (order == 1) ? pick_forces_hg<2, 1>(simd_isa, hg, visc, multi)
+                                  : pick_forces_hg<2, 2>(simd_isa, hg, visc, multi);
+  else fn = (order == 1) ? pick_forces_hg<3, 1>(simd_isa, hg, visc, multi)
+                         : pick_forces_hg<3, 2>(simd_isa, hg, visc, multi);
+  fn(ell, ell_particles());
+}
+
+/* the virial of the SIMD step: the scalar gather form's tally (its forces
+   and the bond fix's tallies computed into the arrays and then restored) */
+void PairTLSPH::simd_virial(int hg, int visc)
+{
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  double **f = atom->f, **f_hg = bonds->f_hg, **f_visc = bonds->f_visc;
+  std::vector<double> keep(3 * ((size_t) nall + 2 * (size_t) nlocal));
+  double *kf = keep.data(), *kh = kf + 3 * (size_t) nall, *kv = kh + 3 * (size_t) nlocal;
+  if (nall) std::copy(f[0], f[0] + 3 * (size_t) nall, kf);
+  if (nlocal) {
+    std::copy(f_hg[0], f_hg[0] + 3 * (size_t) nlocal, kh);
+    std::copy(f_visc[0], f_visc[0] + 3 * (size_t) nlocal, kv);
+  }
+  if (dim == 2) {
+    if (order == 1) dispatch_forces<2, 1>(hg, visc, 1, 0);
+    else dispatch_forces<2, 2>(hg, visc, 1, 0);
+  } else {
+    if (order == 1) dispatch_forces<3, 1>(hg, visc, 1, 0);
+    else dispatch_forces<3, 2>(hg, visc, 1, 0);
+  }
+  if (nall) std::copy(kf, kf + 3 * (size_t) nall, f[0]);
+  if (nlocal) {
+    std::copy(kh, kh + 3 * (size_t) nlocal, f_hg[0]);
+    std::copy(kv, kv + 3 * (size_t) nlocal, f_visc[0]);
+  }
+}

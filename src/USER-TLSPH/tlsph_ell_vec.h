@@ -1,0 +1,231 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   USER-TLSPH: the stencil chunks of the SIMD step with explicit vectors
+   (tlsph_ell.h). Only for pair_tlsph_simd.cpp, which compiles them per
+   instruction set: the vector type is passed by value only between inlined
+   functions, so the ABI note of GCC about it (-Wpsabi) does not apply.
+------------------------------------------------------------------------- */
+
+#ifndef TLSPH_ELL_VEC_H
+#define TLSPH_ELL_VEC_H
+
+#include "tlsph_ell.h"
+
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+namespace TLSPH {
+
+#if defined(__GNUC__) && !defined(__CUDACC__)
+#define TLSPH_ELL_VEC 1
+/* Stencil chunks with explicit vectors: GCC's vector extension, C doubles
+   (one AVX-512 register, two AVX2 ones, or scalar code on the portable
+   build), so that every quantity of a slot is one contiguous load; the
+   pair terms are the same templates as the scalar path's, with T = EllVecOf<W>::type.
+   (The vectoriser, left to itself, mixes gathers into these loops.) */
+template <int W> struct EllVecOf {
+  typedef double type __attribute__((vector_size(W * sizeof(double))));
+};
+
+template <class V> TLSPH_FORCE_INLINE V ell_load(const double *p)
+{
+  V v;
+  __builtin_memcpy(&v, p, sizeof(v));
+  return v;
+}
+
+template <class V> TLSPH_FORCE_INLINE V ell_splat(double a)
+{
+  return V{} + a;
+}
+
+/* The slots of a stencil chunk: its blocks (values per lane) or its
+   pattern (one value for all lanes). j0(m): partner of lane 0 in slot m;
+   val<V>(m, k, h): the k-th value of slot m (EllShape) for the lanes h..
+   (as many as V holds). */
+template <int DIM> struct LaneSlots {
+  const int *j;       // at the chunk's first block
+  const double *v;
+  int n;
+  TLSPH_FORCE_INLINE long j0(int m) const { return j[(long) ELL_C * m]; }
+  template <class V> TLSPH_FORCE_INLINE V val(int m, int k, int h) const
+  {
+    return ell_load<V>(v + (long) EllShape<DIM>::NV * ELL_C * m + ELL_C * k + h);
+  }
+};
+template <int DIM> struct PatternSlots {
+  const int *off;     // at the pattern's first slot
+  const double *v;
+  int n;
+  long i0;
+  TLSPH_FORCE_INLINE long j0(int m) const { return i0 + off[m]; }
+  template <class V> TLSPH_FORCE_INLINE V val(int m, int k, int) const
+  {
+    return ell_splat<V>(v[EllShape<DIM>::NV * m + k]);
+  }
+};
+
+template <int DIM> TLSPH_FORCE_INLINE LaneSlots<DIM> lane_slots(const EllArrays &e, int c)
+{
+  const long b0 = e.start[c];
+  return LaneSlots<DIM>{e.j + ELL_C * b0, e.v + (long) EllShape<DIM>::NV * ELL_C * b0,
+                        e.start[c + 1] - e.start[c]};
+}
+template <int DIM> TLSPH_FORCE_INLINE PatternSlots<DIM> pattern_slots(const EllArrays &e, int c)
+{
+  const int q = e.pat[c], m0 = e.pat_start[q];
+  return PatternSlots<DIM>{e.pat_off + m0, e.pat_v + (long) EllShape<DIM>::NV * m0,
+                           e.pat_start[q + 1] - m0, (long) c * ELL_C};
+}
+
+/* ell_deformation_chunk for a stencil chunk, its slots from sl, in vectors
+   of W lanes (W divides ELL_C): lanes h .. h + W - 1 */
+template <int DIM, int W, class Slots>
+TLSPH_FORCE_INLINE void ell_deformation_stencil(const Slots &sl, int c, int h,
+                                                const EllParticles &p, double *F)
+{
+  using V = typename EllVecOf<W>::type;
+  const long ns = p.ns, i0 = (long) c * ELL_C + h;
+  V xi[DIM], x0i[DIM], Fa[DIM * DIM];
+  for (int d = 0; d < DIM; d++) xi[d] = ell_load<V>(p.xs + d * ns + i0), x0i[d] = ell_load<V>(p.x0s + d * ns + i0);
+  for (int k = 0; k < DIM * DIM; k++) Fa[k] = V{};
+  for (int m = 0; m < sl.n; m++) {
+    const long j0 = sl.j0(m) + h;
+    V du[DIM], g[DIM];
+    for (int d = 0; d < DIM; d++)
+      du[d] = (ell_load<V>(p.xs + d * ns + j0) - xi[d]) - (ell_load<V>(p.x0s + d * ns + j0) - x0i[d]);
+    for (int k = 0; k < DIM; k++) g[k] = sl.template val<V>(m, k, h);
+    for (int r = 0; r < DIM; r++)
+      for (int k = 0; k < DIM; k++) Fa[DIM * r + k] += du[r] * g[k];
+  }
+  for (int l = 0; l < W; l++) {
+    double *Fi = F + 9 * (long) p.perm[i0 + l];
+    for (int r = 0; r < 3; r++)
+      for (int k = 0; k < 3; k++)
+        Fi[3 * r + k] = (r < DIM && k < DIM) ? (r == k ? 1.0 : 0.0) + Fa[DIM * r + k][l]
+                                             : (r == k ? 1.0 : 0.0);
+  }
+}
+
+// ell_force_chunk for a stencil chunk (the same terms in the same order)
+template <int DIM, int ORDER, int HG, int VISC, int MULTI, int W, class Slots>
+TLSPH_FORCE_INLINE void ell_force_stencil(const Slots &sl, int c, int h, const EllParticles &p)
+{
+  using V = typename EllVecOf<W>::type;
+  using S = EllShape<DIM>;
+  using L = Packed<DIM, ORDER>;
+  constexpr int NB = L::NB;
+  constexpr int C = W;
+  const double inv_h = 1.0 / p.h;
+  const double eps2 = 0.01 * p.h * p.h;
+  const long ns = p.ns, i0 = (long) c * ELL_C + h;
+  const double *xs = p.xs, *vs = p.vs, *x0s = p.x0s, *pks = p.pks;
+
+  V xi[DIM], vi[DIM], x0i[DIM], Fi[DIM * DIM], Ki[DIM * DIM];
+  for (int d = 0; d < DIM; d++) {
+    xi[d] = ell_load<V>(xs + d * ns + i0);
+    vi[d] = ell_load<V>(vs + d * ns + i0);
+    x0i[d] = ell_load<V>(x0s + d * ns + i0);
+  }
+  for (int k = 0; k < DIM * DIM; k++) {
+    Fi[k] = ell_load<V>(pks + (L::F + k) * ns + i0);
+    Ki[k] = ell_load<V>(pks + (L::K + k) * ns + i0);
+  }
+  const V ai = ell_load<V>(pks + L::A * ns + i0);
+  double tV[C], tc[C], tr[C], tE[C];
+  for (int l = 0; l < C; l++) {
+    const int il = p.perm[i0 + l];
+    tV[l] = p.vfrac[il];
+    const PairMaterial &mi = p.pm[p.type[MULTI ? il : p.perm[(long) c * ELL_C]]];
+    tc[l] = mi.c0, tr[l] = mi.rho, tE[l] = mi.E;
+  }
+  const V Vi = ell_load<V>(tV), c0i = ell_load<V>(tc), rhoi = ell_load<V>(tr), Ei = ell_load<V>(tE);
+  V as[DIM], av[DIM], avi[DIM], ah[DIM];
+  for (int d = 0; d < DIM; d++) as[d] = av[d] = avi[d] = ah[d] = V{};
+
+  for (int m = 0; m < sl.n; m++) {
+    const long j0 = sl.j0(m) + h;
+    V X[DIM];
+    for (int d = 0; d < DIM; d++) X[d] = ell_load<V>(x0s + d * ns + j0) - x0i[d];
+    {
+      V s3[3] = {V{}, V{}, V{}}, pb[NB];
+      for (int d = 0; d < DIM; d++) s3[d] = -X[d] * inv_h;
+      Basis<DIM, ORDER>::eval(s3, pb);
+      const V cm = sl.template val<V>(m, S::CREV, h);
+      for (int r = 0; r < DIM; r++) {
+        V acc = V{};
+        for (int k = 0; k < NB; k++) acc += ell_load<V>(pks + (L::R + NB * r + k) * ns + j0) * pb[k];
+        as[r] -= cm * acc;
+      }
+    }
+    if (!(HG || VISC)) continue;
+    V xij[DIM], r2 = V{};
+    for (int d = 0; d < DIM; d++) {
+      xij[d] = ell_load<V>(xs + d * ns + j0) - xi[d];
+      r2 += xij[d] * xij[d];
+    }
+    const V r2s = r2 > V{} ? r2 : ell_splat<V>(1.0);
+    const V inv_both = 1.0 / (r2s * (r2s + eps2));
+    V c0j = c0i, rhoj = rhoi, Ej = Ei;
+    if (MULTI) {
+      for (int l = 0; l < C; l++) {
+        const PairMaterial &mj = p.pm[p.type[p.perm[j0 + l]]];
+        tc[l] = mj.c0, tr[l] = mj.rho, tE[l] = mj.E;
+      }
+      c0j = ell_load<V>(tc), rhoj = ell_load<V>(tr), Ej = ell_load<V>(tE);
+    }
+    if (VISC) {
+      V vj[DIM];
+      for (int d = 0; d < DIM; d++) vj[d] = ell_load<V>(vs + d * ns + j0);
+      const V sv = viscous_coefficient<DIM>(
+          vi, vj, xij, r2, inv_both, p.h, p.beta, 0.5 * (ai + ell_load<V>(pks + L::A * ns + j0)),
+          V(0.5 * (c0i + c0j)), V(0.5 * (rhoi + rhoj)), V(Vi * sl.template val<V>(m, S::WV, h)));
+      for (int d = 0; d < DIM; d++) avi[d] += sv * X[d];
+      for (int r = 0; r < DIM; r++) {
+        V acc = V{};
+        for (int k = 0; k < DIM; k++) acc += ell_load<V>(pks + (L::K + DIM * r + k) * ns + j0) * X[k];
+        av[r] += sv * acc;
+      }
+    }
+    if (HG) {
+      V Fj[DIM * DIM], ph[DIM];
+      for (int k = 0; k < DIM * DIM; k++) Fj[k] = ell_load<V>(pks + (L::F + k) * ns + j0);
+      hourglass_pair<DIM, HG, false>(Fi, Fj, X, xij, r2, eps2, inv_both,
+                                     V(p.gamma * 0.5 * (Ei + Ej)),
+                                     V(Vi * sl.template val<V>(m, S::WHG, h)), ph);
+      for (int d = 0; d < DIM; d++) ah[d] += ph[d];
+    }
+  }
+
+  V fv[DIM];
+  for (int r = 0; r < DIM; r++) {
+    fv[r] = av[r];
+    if (VISC)
+      for (int k = 0; k < DIM; k++) fv[r] += Ki[DIM * r + k] * avi[k];
+  }
+  for (int l = 0; l < C; l++) {
+    const long i = p.perm[i0 + l];
+    for (int r = 0; r < DIM; r++) {
+      const double fs = p.fown[3 * i + r] + as[r][l];
+      p.f[3 * i + r] += fs + fv[r][l] + ah[r][l];
+      if (HG != 2 && p.f_hg) p.f_hg[3 * i + r] = ah[r][l];
+      p.f_visc[3 * i + r] = fv[r][l];
+    }
+    for (int r = DIM; r < 3; r++) {
+      if (HG != 2 && p.f_hg) p.f_hg[3 * i + r] = 0.0;
+      p.f_visc[3 * i + r] = 0.0;
+    }
+  }
+}
+#else
+#define TLSPH_ELL_VEC 0
+#endif
+
+}    // namespace TLSPH
+
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
+#endif
