@@ -91,6 +91,8 @@ PairTLSPH::~PairTLSPH()
   memory->destroy(ell.j);
   memory->destroy(ell.v);
   memory->destroy(ell.kind);
+  memory->destroy(ell.first);
+  memory->destroy(ell.n);
   memory->destroy(ell.pat);
   memory->destroy(ell.pat_start);
   memory->destroy(ell.pat_off);
@@ -1475,7 +1477,7 @@ double PairTLSPH::memory_usage()
   bytes += (double) ncache_max * (2 * sizeof(int) + (dim + 2) * sizeof(double));
   bytes += (double) nstart_max * sizeof(int);
   // the SIMD step's layout: per slot and lane a partner and dim + 3 doubles
-  bytes += (double) ell_nstart * 3 * sizeof(int);
+  bytes += (double) ell_nstart * 5 * sizeof(int);
   if (ell.npat) bytes += (double) ell.pat_start[ell.npat] * (sizeof(int) + (dim + 3) * sizeof(double));
   bytes += (double) ell_nblock_max * TLSPH::ELL_C * (sizeof(int) + (dim + 3) * sizeof(double));
   bytes += (double) ell_nperm * (2 * sizeof(int) + (3 * dim + packed_size()) * sizeof(double));

@@ -100,12 +100,15 @@ class PairTLSPH : public Pair {
   static const char *simd_name(int isa);
   static bool simd_supported(int isa);
   int simd_in_use() const { return simd_isa; }
-  // chunks of the SIMD step's layout by kind (TLSPH::EllArrays: gather,
-  // stencil, pattern) and the number of patterns
+  // the SIMD step's layout (TLSPH::EllArrays) and the number of patterns
   void simd_chunks(int *kinds, int *npat) const
   {
+    // particles in stencil chunks, in pattern chunks, alone in a chunk
     kinds[0] = kinds[1] = kinds[2] = 0;
-    for (int c = 0; simd_isa && c < ell.nchunk; c++) kinds[ell.kind[c]]++;
+    for (int c = 0; simd_isa && c < ell.nchunk; c++) {
+      kinds[ell.kind[c]] += ell.n[c];
+      if (ell.n[c] == 1) kinds[2]++;
+    }
     *npat = simd_isa ? ell.npat : 0;
   }
   void sort_particles();    // the SIMD step's order of the local particles (its bond fix calls it)
@@ -272,7 +275,6 @@ class PairTLSPH : public Pair {
   int *ell_inv = nullptr;       // LAMMPS index -> the step's order
   double *ell_soa = nullptr;    // columns (length ell_nperm): x, v, x0c, packed rows
   int ell_nperm = 0;
-  bigint ell_pattern_bonds = 0;    // bond slots read from patterns
   int report_simd = 1;             // 1: log the layout at the next build_ell
   void ell_columns_xv();
   void ell_columns_pk(int k0, int k1);

@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <map>
 #include <string>
 #include <utility>
@@ -53,53 +54,79 @@ namespace {
    measured up to 1e-13 on the bench blocks), so sharing one particle's
    values changes the step by round-off. */
 constexpr double ELL_SHARE_TOL = 1.0e-13;
+/* A chunk's slots are the union of its particles' partner offsets; it takes
+   no further particle once that union would exceed this factor times the
+   largest bond count among them (the lanes' zero-weight slots are work
+   without use; a particle left alone runs in a vector of one lane). */
+constexpr double ELL_UNION_SLACK = 1.25;
 using TLSPH::EllArrays;
 using TLSPH::EllParticles;
 using DeformFn = void (*)(const EllArrays &, const EllParticles &, double *);
 using ForceFn = void (*)(const EllArrays &, const EllParticles &);
 
-// the drivers: every chunk, in order, by its kind; stencil chunks in
-// vectors of W lanes (one copy per instruction set)
-#define TLSPH_ELL_DRIVERS(NS, ATTR, W)                                                       \
+// a chunk's n lanes in vectors of 8, 4, 2 and 1 lanes (the widest first,
+// at most the instruction set's width)
+#define TLSPH_ELL_PIECES8(n, CALL)                                                           \
+  {                                                                                          \
+    int h = 0;                                                                               \
+    for (; h + 8 <= (n); h += 8) CALL(8);                                                    \
+    if (h + 4 <= (n)) { CALL(4); h += 4; }                                                   \
+    if (h + 2 <= (n)) { CALL(2); h += 2; }                                                   \
+    if (h < (n)) CALL(1);                                                                    \
+  }
+#define TLSPH_ELL_PIECES4(n, CALL)                                                           \
+  {                                                                                          \
+    int h = 0;                                                                               \
+    for (; h + 4 <= (n); h += 4) CALL(4);                                                    \
+    if (h + 2 <= (n)) { CALL(2); h += 2; }                                                   \
+    if (h < (n)) CALL(1);                                                                    \
+  }
+#define TLSPH_ELL_PIECES2(n, CALL)                                                           \
+  {                                                                                          \
+    int h = 0;                                                                               \
+    for (; h + 2 <= (n); h += 2) CALL(2);                                                    \
+    if (h < (n)) CALL(1);                                                                    \
+  }
+
+// the drivers: every chunk, in order (one copy per instruction set)
+#define TLSPH_ELL_DRIVERS(NS, ATTR, PIECES)                                                     \
   namespace NS {                                                                             \
   template <int DIM>                                                                         \
   ATTR void deformation(const EllArrays &e, const EllParticles &p, double *F)               \
   {                                                                                          \
     for (int c = 0; c < e.nchunk; c++) {                                                     \
+      const int first = e.first[c], n = e.n[c];                                              \
       if (e.kind[c] == EllArrays::PATTERN) {                                                 \
         const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                     \
-        for (int h = 0; h < TLSPH::ELL_C; h += W)                                            \
-          TLSPH::ell_deformation_stencil<DIM, W>(sl, c, h, p, F);                            \
-      } else if (e.kind[c] == EllArrays::STENCIL) {                                          \
+        PIECES(n, ELL_D)                                                        \
+      } else {                                                                               \
         const auto sl = TLSPH::lane_slots<DIM>(e, c);                                        \
-        for (int h = 0; h < TLSPH::ELL_C; h += W)                                            \
-          TLSPH::ell_deformation_stencil<DIM, W>(sl, c, h, p, F);                            \
-      } else                                                                                 \
-        TLSPH::ell_deformation_chunk<DIM, 0>(e, c, p, F);                                    \
+        PIECES(n, ELL_D)                                                        \
+      }                                                                                      \
     }                                                                                        \
   }                                                                                          \
   template <int DIM, int ORDER, int HG, int VISC, int MULTI>                                 \
   ATTR void forces(const EllArrays &e, const EllParticles &p)                               \
   {                                                                                          \
     for (int c = 0; c < e.nchunk; c++) {                                                     \
+      const int first = e.first[c], n = e.n[c];                                              \
       if (e.kind[c] == EllArrays::PATTERN) {                                                 \
         const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                     \
-        for (int h = 0; h < TLSPH::ELL_C; h += W)                                            \
-          TLSPH::ell_force_stencil<DIM, ORDER, HG, VISC, MULTI, W>(sl, c, h, p);             \
-      } else if (e.kind[c] == EllArrays::STENCIL) {                                          \
+        PIECES(n, ELL_F)                                                        \
+      } else {                                                                               \
         const auto sl = TLSPH::lane_slots<DIM>(e, c);                                        \
-        for (int h = 0; h < TLSPH::ELL_C; h += W)                                            \
-          TLSPH::ell_force_stencil<DIM, ORDER, HG, VISC, MULTI, W>(sl, c, h, p);             \
-      } else                                                                                 \
-        TLSPH::ell_force_chunk<DIM, ORDER, HG, VISC, MULTI, 0>(e, c, p);                     \
+        PIECES(n, ELL_F)                                                        \
+      }                                                                                      \
     }                                                                                        \
   }                                                                                          \
   }
+#define ELL_D(w) TLSPH::ell_deformation_stencil<DIM, w>(sl, first, h, p, F)
+#define ELL_F(w) TLSPH::ell_force_stencil<DIM, ORDER, HG, VISC, MULTI, w>(sl, first, h, p)
 
-TLSPH_ELL_DRIVERS(ell_portable, , 2)
+TLSPH_ELL_DRIVERS(ell_portable, , TLSPH_ELL_PIECES2)
 #if TLSPH_ELL_X86
-TLSPH_ELL_DRIVERS(ell_avx2, TLSPH_ATTR_AVX2, 4)
-TLSPH_ELL_DRIVERS(ell_avx512, TLSPH_ATTR_AVX512, 8)
+TLSPH_ELL_DRIVERS(ell_avx2, TLSPH_ATTR_AVX2, TLSPH_ELL_PIECES4)
+TLSPH_ELL_DRIVERS(ell_avx512, TLSPH_ATTR_AVX512, TLSPH_ELL_PIECES8)
 #endif
 
 template <int DIM> DeformFn pick_deformation(int isa)
@@ -239,82 +266,112 @@ void PairTLSPH::build_ell()
   for (int k = 0; k < nall; k++)
     for (int d = 0; d < dim; d++) x0s[(bigint) d * ns + k] = x0[3 * ell_perm[k] + d];
 
-  // the layout: each chunk's blocks are made in a scratch copy, then kept
-  // (GATHER, STENCIL) or replaced by a pattern (PATTERN)
-  const int nchunk = (nlocal + C - 1) / C;
+  // every local particle's bonds sorted by partner in the step's order:
+  // (partner, bond) pairs, bo_start per particle
+  std::vector<int> bo_start(nlocal + 1, 0);
+  std::vector<std::pair<int, int>> bo;
+  for (int ii = 0; ii < nlocal; ii++) {
+    const int i = ell_perm[ii], s = bond_start[i], n = nbond[i];
+    for (int m = 0; m < n; m++) bo.emplace_back(ell_inv[lean.j[s + m]], m);
+    std::sort(bo.begin() + bo_start[ii], bo.end());
+    bo_start[ii + 1] = (int) bo.size();
+  }
+  /* chunks: up to C consecutive particles; their slots are the union of
+     their partner offsets (partner index minus own index), a lane without
+     a bond of that offset reads a partner that is none of its own, with
+     zero weights (it adds exactly zero); a particle joins while the union
+     stays within ELL_UNION_SLACK of the largest bond count of the chunk and
+     every lane's partner index is a particle of the columns */
+  const auto offsets = [&](int ii) {
+    std::vector<int> o(bo_start[ii + 1] - bo_start[ii]);
+    for (size_t m = 0; m < o.size(); m++) o[m] = bo[bo_start[ii] + m].first - ii;
+    return o;
+  };
+  std::vector<int> cfirst, cn, cslot_start(1, 0), cslot;
+  for (int ii = 0; ii < nlocal;) {
+    std::vector<int> uni = offsets(ii), cand;
+    size_t wmax = uni.size();
+    int n = 1;
+    while (n < C && ii + n < nlocal) {
+      const std::vector<int> o = offsets(ii + n);
+      cand.clear();
+      std::set_union(uni.begin(), uni.end(), o.begin(), o.end(), std::back_inserter(cand));
+      const size_t w = std::max(wmax, o.size());
+      if ((double) cand.size() > ELL_UNION_SLACK * (double) w) break;
+      if (!cand.empty() && (ii + cand.front() < 0 || ii + n + cand.back() >= nall)) break;
+      uni.swap(cand);
+      wmax = w;
+      n++;
+    }
+    cfirst.push_back(ii);
+    cn.push_back(n);
+    cslot.insert(cslot.end(), uni.begin(), uni.end());
+    cslot_start.push_back((int) cslot.size());
+    ii += n;
+  }
+  const int nchunk = (int) cfirst.size();
   if (nchunk + 1 > ell_nstart) {
     ell_nstart = nchunk + 1 + nchunk / 8 + 8;
-    memory->destroy(ell.start);
-    memory->destroy(ell.kind);
-    memory->destroy(ell.pat);
-    memory->create(ell.start, ell_nstart, "tlsph:ell_start");
-    memory->create(ell.kind, ell_nstart, "tlsph:ell_kind");
-    memory->create(ell.pat, ell_nstart, "tlsph:ell_pat");
+    for (int **a : {&ell.start, &ell.first, &ell.n, &ell.kind, &ell.pat}) {
+      memory->destroy(*a);
+      memory->create(*a, ell_nstart, "tlsph:ell_chunks");
+    }
   }
   ell.nchunk = nchunk;
-  std::vector<std::pair<int, int>> order;    // (partner in the step's order, bond)
+  std::copy(cfirst.begin(), cfirst.end(), ell.first);
+  std::copy(cn.begin(), cn.end(), ell.n);
+
+  // chunk c's blocks into sj (C per slot) and sv (nv C per slot); its width
   std::vector<int> sj;
   std::vector<double> sv;
-  // chunk c into sj (C per slot) and sv (nv C per slot); returns its width
   const auto fill = [&](int c) {
-    int w = 0;
-    for (int l = 0; l < C && c * C + l < nlocal; l++) w = std::max(w, nbond[ell_perm[c * C + l]]);
+    const int first = ell.first[c];
+    const int *off = cslot.data() + cslot_start[c];
+    const int w = cslot_start[c + 1] - cslot_start[c];
     sj.assign((size_t) C * w, 0);
     sv.assign((size_t) nv * C * w, 0.0);
-    for (int l = 0; l < C; l++) {
-      const int ii = c * C + l;
-      const int iv = ii < nlocal ? ii : nlocal - 1;
-      const int i = ii < nlocal ? ell_perm[ii] : -1;
-      const int n = i >= 0 ? nbond[i] : 0;
-      const int s = i >= 0 ? bond_start[i] : 0;
-      order.resize(n);
-      for (int m = 0; m < n; m++) order[m] = {ell_inv[lean.j[s + m]], m};
-      std::sort(order.begin(), order.end());
+    for (int l = 0; l < ell.n[c]; l++) {
+      const int ii = first + l, i = ell_perm[ii], s = bond_start[i];
+      const int b0 = bo_start[ii], nb = bo_start[ii + 1] - b0;
+      int q = 0;    // the lane's next own bond (sorted like the offsets)
       for (int m = 0; m < w; m++) {
-        double *vb = sv.data() + (size_t) nv * C * m;
-        if (m < n) {
-          const int mm = order[m].second;
+        sj[(size_t) C * m + l] = ii + off[m];
+        if (q < nb && bo[b0 + q].first - ii == off[m]) {
+          double *vb = sv.data() + (size_t) nv * C * m;
+          const int mm = bo[b0 + q].second;
           const bigint e = s + mm;
-          sj[(size_t) C * m + l] = order[m].first;
           for (int k = 0; k < dim; k++) vb[C * k + l] = lean.g[dim * e + k];
           vb[C * dim + l] = lean.w[2 * e];
           vb[C * (dim + 1) + l] = lean.w[2 * e + 1];
           vb[C * (dim + 2) + l] =
               (dim == 2) ? bonds_of<2>(i).reverse_weight(mm) : bonds_of<3>(i).reverse_weight(mm);
-        } else {
-          sj[(size_t) C * m + l] = iv;    // padding: the particle itself, zero weights
+          q++;
         }
       }
     }
     return w;
   };
-  // the kind of the chunk in sj, sv: a stencil chunk has C particles and in
-  // every slot partners j[0] + l; a pattern chunk also the same values
-  // (bitwise) in every lane
-  const auto classify = [&](int c, int w) {
-    if ((c + 1) * C > nlocal) return (int) EllArrays::GATHER;
+  // the largest difference between two sets of slot values (a: C per value
+  // with lanes 0 .. n-1, or n = 1 with stride sa), relative to the largest
+  // magnitude of each quantity (the gradient's components together)
+  const auto spread = [&](const double *q, int w, int n) {
+    double scale[TLSPH::EllShape<3>::NV] = {0, 0, 0, 0, 0, 0}, worst = 0.0;
     for (int m = 0; m < w; m++)
-      for (int l = 1; l < C; l++)
-        if (sj[(size_t) C * m + l] != sj[(size_t) C * m] + l) return (int) EllArrays::GATHER;
-    // scales: the largest magnitude of each quantity in the chunk (the
-    // gradient's components together)
-    double scale[TLSPH::EllShape<3>::NV] = {0, 0, 0, 0, 0, 0};
-    for (size_t m = 0; m < (size_t) w; m++)
       for (int k = 0; k < nv; k++)
-        for (int l = 0; l < C; l++) {
+        for (int l = 0; l < n; l++) {
           const int kk = k < dim ? 0 : k;
-          scale[kk] = std::max(scale[kk], std::fabs(sv[nv * C * m + C * k + l]));
+          scale[kk] = std::max(scale[kk], std::fabs(q[(size_t) nv * C * m + C * k + l]));
         }
-    double worst = 0.0;
     for (int m = 0; m < w; m++)
-      for (int k = 0; k < nv; k++) {
-        const double *q = sv.data() + (size_t) nv * C * m + C * k;
-        for (int l = 1; l < C; l++)
-          if (q[l] != q[0]) worst = std::max(worst, std::fabs(q[l] - q[0]) / scale[k < dim ? 0 : k]);
-      }
-    return worst <= ELL_SHARE_TOL ? (int) EllArrays::PATTERN : (int) EllArrays::STENCIL;
+      for (int k = 0; k < nv; k++)
+        for (int l = 1; l < n; l++) {
+          const double a = q[(size_t) nv * C * m + C * k + l], b = q[(size_t) nv * C * m + C * k];
+          if (a != b) worst = std::max(worst, std::fabs(a - b) / scale[k < dim ? 0 : k]);
+        }
+    return worst;
   };
-  // pass 1: kinds, patterns, the blocks kept
+  // pass 1: kinds and patterns (a chunk whose lanes agree within the
+  // tolerance, matched against the patterns with the same offsets)
   std::map<std::string, std::vector<int>> patterns;
   int npat = 0;
   std::vector<int> pat_off;
@@ -323,20 +380,19 @@ void PairTLSPH::build_ell()
   bigint nblock = 0;
   for (int c = 0; c < nchunk; c++) {
     const int w = fill(c);
-    ell.kind[c] = classify(c, w);
     ell.pat[c] = -1;
-    if (ell.kind[c] != EllArrays::PATTERN) {
+    ell.kind[c] = EllArrays::STENCIL;
+    if (ell.n[c] < 2 || spread(sv.data(), w, ell.n[c]) > ELL_SHARE_TOL) {
       nblock += w;
       continue;
     }
-    // the pattern's key: the offsets of the partners and the values of lane 0
+    ell.kind[c] = EllArrays::PATTERN;
     std::vector<int> off(w);
     std::vector<double> val((size_t) nv * w);
     for (int m = 0; m < w; m++) {
-      off[m] = sj[(size_t) C * m] - c * C;
+      off[m] = sj[(size_t) C * m] - ell.first[c];
       for (int k = 0; k < nv; k++) val[(size_t) nv * m + k] = sv[(size_t) nv * C * m + C * k];
     }
-    // an existing pattern with these offsets and values within the tolerance
     const std::string key(reinterpret_cast<const char *>(off.data()), sizeof(int) * off.size());
     auto &cands = patterns[key];
     int found = -1;
@@ -393,21 +449,23 @@ void PairTLSPH::build_ell()
     }
     ell.start[c + 1] = ell.start[c] + w;
   }
-  ell_pattern_bonds = 0;
-  for (int c = 0; c < nchunk; c++)
-    if (ell.kind[c] == EllArrays::PATTERN) ell_pattern_bonds += C * (ell.pat_start[ell.pat[c] + 1] - ell.pat_start[ell.pat[c]]);
   ell_version = cache_version;
   if (report_simd) {
     // once per run: how the particles were laid out (rank sums)
     report_simd = 0;
-    bigint mine[5] = {0, 0, 0, ell.npat, nblock}, all[5];
-    for (int c = 0; c < nchunk; c++) mine[ell.kind[c]]++;
-    MPI_Allreduce(mine, all, 5, MPI_LMP_BIGINT, MPI_SUM, world);
+    bigint mine[6] = {0, 0, 0, 0, ell.npat, nblock}, all[6];
+    for (int c = 0; c < nchunk; c++) {
+      mine[ell.kind[c] == EllArrays::PATTERN ? 1 : 0] += ell.n[c];
+      if (ell.n[c] == 1) mine[2]++;
+      mine[3]++;
+    }
+    MPI_Allreduce(mine, all, 6, MPI_LMP_BIGINT, MPI_SUM, world);
     if (comm->me == 0)
-      utils::logmesg(lmp, "pair tlsph: SIMD step ({}, {} lanes): {} chunks of particles, {} from "
-                          "{} shared bond pattern(s), {} stencil, {} gathered\n",
-                     simd_name(simd_isa), C, all[0] + all[1] + all[2], all[2], all[3], all[1],
-                     all[0]);
+      utils::logmesg(lmp, "pair tlsph: SIMD step ({}, up to {} lanes): {} particles in {} chunks; "
+                          "{} read their bonds from {} shared pattern(s), {} their own ({} of "
+                          "them alone in a chunk)\n",
+                     simd_name(simd_isa), C, all[0] + all[1], all[3], all[1], all[4], all[0],
+                     all[2]);
   }
 }
 

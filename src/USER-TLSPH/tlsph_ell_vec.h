@@ -76,17 +76,19 @@ template <int DIM> TLSPH_FORCE_INLINE PatternSlots<DIM> pattern_slots(const EllA
 {
   const int q = e.pat[c], m0 = e.pat_start[q];
   return PatternSlots<DIM>{e.pat_off + m0, e.pat_v + (long) EllShape<DIM>::NV * m0,
-                           e.pat_start[q + 1] - m0, (long) c * ELL_C};
+                           e.pat_start[q + 1] - m0, (long) e.first[c]};
 }
 
-/* ell_deformation_chunk for a stencil chunk, its slots from sl, in vectors
-   of W lanes (W divides ELL_C): lanes h .. h + W - 1 */
+/* pass (1), the bond part: F_i = I + sum_j (u_j - u_i) (x) g_ij
+   (deformation_gradient_bonds) for lanes h .. h + W - 1 of the chunk whose
+   first particle is `first`, its slots from sl; F: 9 per atom, by LAMMPS
+   index */
 template <int DIM, int W, class Slots>
-TLSPH_FORCE_INLINE void ell_deformation_stencil(const Slots &sl, int c, int h,
+TLSPH_FORCE_INLINE void ell_deformation_stencil(const Slots &sl, int first, int h,
                                                 const EllParticles &p, double *F)
 {
   using V = typename EllVecOf<W>::type;
-  const long ns = p.ns, i0 = (long) c * ELL_C + h;
+  const long ns = p.ns, i0 = (long) first + h;
   V xi[DIM], x0i[DIM], Fa[DIM * DIM];
   for (int d = 0; d < DIM; d++) xi[d] = ell_load<V>(p.xs + d * ns + i0), x0i[d] = ell_load<V>(p.x0s + d * ns + i0);
   for (int k = 0; k < DIM * DIM; k++) Fa[k] = V{};
@@ -108,9 +110,14 @@ TLSPH_FORCE_INLINE void ell_deformation_stencil(const Slots &sl, int c, int h,
   }
 }
 
-// ell_force_chunk for a stencil chunk (the same terms in the same order)
+/* pass (3), gather form, for lanes h .. h + W - 1 of a chunk: the stress
+   term - sum_j c_ij R_j p(-X_ij/h), the viscous and (HG 1, 2) hourglass
+   pair forces from this end (the terms and order of particle_force_bonds,
+   SCATTER off), plus fown; adds to f and sets the tallies f_hg (HG 1) and
+   f_visc. MULTI 0: one material (its averages are the values themselves). */
 template <int DIM, int ORDER, int HG, int VISC, int MULTI, int W, class Slots>
-TLSPH_FORCE_INLINE void ell_force_stencil(const Slots &sl, int c, int h, const EllParticles &p)
+TLSPH_FORCE_INLINE void ell_force_stencil(const Slots &sl, int first, int h,
+                                          const EllParticles &p)
 {
   using V = typename EllVecOf<W>::type;
   using S = EllShape<DIM>;
@@ -119,7 +126,7 @@ TLSPH_FORCE_INLINE void ell_force_stencil(const Slots &sl, int c, int h, const E
   constexpr int C = W;
   const double inv_h = 1.0 / p.h;
   const double eps2 = 0.01 * p.h * p.h;
-  const long ns = p.ns, i0 = (long) c * ELL_C + h;
+  const long ns = p.ns, i0 = (long) first + h;
   const double *xs = p.xs, *vs = p.vs, *x0s = p.x0s, *pks = p.pks;
 
   V xi[DIM], vi[DIM], x0i[DIM], Fi[DIM * DIM], Ki[DIM * DIM];
@@ -137,7 +144,7 @@ TLSPH_FORCE_INLINE void ell_force_stencil(const Slots &sl, int c, int h, const E
   for (int l = 0; l < C; l++) {
     const int il = p.perm[i0 + l];
     tV[l] = p.vfrac[il];
-    const PairMaterial &mi = p.pm[p.type[MULTI ? il : p.perm[(long) c * ELL_C]]];
+    const PairMaterial &mi = p.pm[p.type[MULTI ? il : p.perm[first]]];
     tc[l] = mi.c0, tr[l] = mi.rho, tE[l] = mi.E;
   }
   const V Vi = ell_load<V>(tV), c0i = ell_load<V>(tc), rhoi = ell_load<V>(tr), Ei = ell_load<V>(tE);
