@@ -21,7 +21,7 @@ export TLSPH_PYTHON = $(PYTHON)
 export LMP_TLSPH = $(BUILD_ABS)/lmp_tlsph
 export TLSPH_PLUGIN = $(BUILD_ABS)/tlsphplugin.so
 
-.PHONY: all setup configure build run test test-sanitize fuzz bench bench-instructions bench-compare \
+.PHONY: all setup configure build run test test-sanitize fuzz bench bench-instructions bench-compare bench-phases \
         bench-pareto bench-roofline bench-kokkos kokkos kokkos-cuda kokkos-stock kk-plugin clean \
         gpu-bundle gpu-bundle-host gpu-check-host
 
@@ -126,6 +126,11 @@ bench-instructions: build
 # LAMMPS once, cached in $(TLSPH_CACHE)); doc/bench.md, "Side by side"
 bench-compare: build
 	bash bench/compare.sh
+
+# speed per phase of the step: simd no against the SIMD step per
+# instruction set (bench/phases.md; doc/bench.md, "Speed per phase")
+bench-phases: build
+	bash bench/phases.sh
 
 # speed against error of the benchmarks (doc/pareto.md, doc/pareto-*.png;
 # about an hour of one core; resumable, FORCE=1 reruns)

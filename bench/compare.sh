@@ -35,7 +35,7 @@ REPEAT=${COMPARE_REPEAT:-3}
 if [ "${COMPARE_QUICK:-0}" != 0 ]; then n2=60 n3=14 s2=20 s3=5 REPEAT=1; else n2=190 n3=34 s2=200 s3=30; fi
 OUT="$HERE/out/compare"; mkdir -p "$OUT"
 # case: name dim n nsteps gradient codes
-cases=("2D $n2 2 $s2 quadratic tlsph smd" "3D $n3 3 $s3 quadratic tlsph smd"
+cases=("2D $n2 2 $s2 quadratic tlsph tlsph0 smd" "3D $n3 3 $s3 quadratic tlsph tlsph0 smd"
        "3D-damage $n3 3 $s3 linear tlsphd tlsph peri")
 : > "$OUT/times.txt"
 for r in $(seq "$REPEAT"); do
@@ -68,6 +68,9 @@ for r in $(seq "$REPEAT"); do
     done
   done
 done
+# the instruction set of our SIMD step, as the plugin logged it
+SIMD=$(sed -n 's/^pair tlsph: SIMD step (\([a-z0-9]*\),.*/\1/p' "$OUT"/2D-tlsph-1.log | head -1)
+export COMPARE_SIMD="${SIMD:-none}"
 /usr/bin/python3 - "$OUT/times.txt" "$HERE/compare.md" "$(git -C "$ROOT" describe --always --dirty 2>/dev/null || echo '?')" \
   "$OURS_FLAGS" "$LMP_FLAGS" "$CXX_VER" "$(opt_of "$OURS_FLAGS")" <<'PY'
 import sys, statistics, collections, datetime, platform, subprocess
@@ -97,7 +100,9 @@ def lattice_bonds(dim, natoms, support=2.66):
             total += p
     return total / n ** dim
 cpu = subprocess.run("lscpu | sed -n 's/^Model name: *//p'", shell=True, capture_output=True, text=True).stdout.strip()
-label = {"tlsph": "tlsph (ours, plugin)", "tlsphd": "tlsph/damage (ours, plugin)",
+import os
+label = {"tlsph": "tlsph (ours, plugin, SIMD step)", "tlsph0": "tlsph (ours, plugin, simd no)",
+         "tlsphd": "tlsph/damage (ours, plugin)",
          "smd": "smd/tlsph (MACHDYN)", "peri": "peri/pmb (PERI, horizon 3.015 dx)"}
 out = ["# Side by side: one LAMMPS binary, alternating runs", "",
        "(2D, 3D: our quadratic gradient; 3D-damage: the linear gradient, tlsph/damage's default, for both of our rows; "
@@ -107,6 +112,11 @@ out = ["# Side by side: one LAMMPS binary, alternating runs", "",
        f"- date: {datetime.datetime.now():%Y-%m-%d %H:%M}, commit `{sys.argv[3]}`, CPU: {cpu}, 1 rank",
        f"- compiler: {cxx}; optimisation flags of both sides: `{opt}` (compare.sh stops when they differ)",
        f"  - our plugin (build.ninja, pair_tlsph.cpp): `{ours_flags}`",
+       f"  - our SIMD step (pair_style tlsph's default 'simd auto') ran its {os.environ.get('COMPARE_SIMD')} code: "
+       "pair_tlsph_simd.cpp compiles its kernels for AVX-512, AVX2 + FMA and the baseline with function "
+       "attributes and picks one at run time, so our 'SIMD step' rows use vector instructions that the "
+       "other codes, built for the baseline x86-64 (no -march), do not; the 'simd no' row is our scalar "
+       "step, built like them",
        f"  - the LAMMPS with MACHDYN and PERI (build.ninja, pair_smd_tlsph.cpp; "
        "scripts/build-lammps-plugin.sh bench): " f"`{lmp_flags}`",
        f"- {len(next(iter(t.values())))} repeat(s), median loop time (wall) and the CPU time of the same runs (loop time x LAMMPS's "

@@ -139,7 +139,15 @@ void PairTLSPH::set_defaults()
   thickness = 1.0;
   check_partners = 1;
   check_volume = 1;
+  // the default of 'simd' may come from the environment (TLSPH_SIMD, e.g.
+  // "no" in the Kokkos checks, whose reference is the scalar step)
   simd_request = SIMD_AUTO;
+  if (const char *env = getenv("TLSPH_SIMD")) {
+    simd_request = simd_value(env);
+    if (simd_request == SIMD_INVALID)
+      error->all(FLERR, "environment variable TLSPH_SIMD (the default of pair_style tlsph's "
+                        "simd) must be 'auto', 'no', 'portable', 'avx2' or 'avx512', got '{}'", env);
+  }
 }
 
 void PairTLSPH::settings(int narg, char **arg)
@@ -201,12 +209,8 @@ void PairTLSPH::settings(int narg, char **arg)
       else error->all(FLERR, "pair_style tlsph: {} must be 'yes' or 'no', got '{}'", key, val);
       (key == "check_partners" ? check_partners : check_volume) = flag;
     } else if (key == "simd") {
-      if (strcmp(val, "auto") == 0) simd_request = SIMD_AUTO;
-      else if (strcmp(val, "no") == 0) simd_request = SIMD_NO;
-      else if (strcmp(val, "portable") == 0) simd_request = SIMD_PORTABLE;
-      else if (strcmp(val, "avx2") == 0) simd_request = SIMD_AVX2;
-      else if (strcmp(val, "avx512") == 0) simd_request = SIMD_AVX512;
-      else error->all(FLERR, "pair_style tlsph: simd must be 'auto', 'no', 'portable', 'avx2' or "
+      simd_request = simd_value(val);
+      if (simd_request == SIMD_INVALID) error->all(FLERR, "pair_style tlsph: simd must be 'auto', 'no', 'portable', 'avx2' or "
                              "'avx512', got '{}'", val);
     } else {
       error->all(FLERR,

@@ -96,8 +96,10 @@ class PairTLSPH : public Pair {
   class FixTLSPHBonds *bonds;
 
   // the SIMD step (pair_tlsph_simd.cpp, tlsph_ell.h): pair_style ... simd VALUE
-  enum { SIMD_AUTO = -1, SIMD_NO = 0, SIMD_PORTABLE = 1, SIMD_AVX2 = 2, SIMD_AVX512 = 3 };
+  enum { SIMD_INVALID = -2, SIMD_AUTO = -1, SIMD_NO = 0, SIMD_PORTABLE = 1, SIMD_AVX2 = 2,
+         SIMD_AVX512 = 3 };
   static const char *simd_name(int isa);
+  static int simd_value(const char *word);    // SIMD_INVALID for an unknown word
   static bool simd_supported(int isa);
   int simd_in_use() const { return simd_isa; }
   // the SIMD step's layout (TLSPH::EllArrays) and the number of patterns

@@ -64,6 +64,7 @@ using TLSPH::EllParticles;
 using DeformFn = void (*)(const EllArrays &, const EllParticles &, double *);
 using ForceFn = void (*)(const EllArrays &, const EllParticles &);
 
+#if TLSPH_ELL_VEC
 // a chunk's n lanes in vectors of 8, 4, 2 and 1 lanes (the widest first,
 // at most the instruction set's width)
 #define TLSPH_ELL_PIECES8(n, CALL)                                                           \
@@ -169,6 +170,7 @@ template <int DIM, int ORDER> ForceFn pick_forces_hg(int isa, int hg, int visc, 
   if (hg == 2) return pick_forces_visc<DIM, ORDER, 2>(isa, visc, multi);
   return pick_forces_visc<DIM, ORDER, 0>(isa, visc, multi);
 }
+#endif    // TLSPH_ELL_VEC
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
@@ -184,10 +186,21 @@ const char *PairTLSPH::simd_name(int isa)
   }
 }
 
+int PairTLSPH::simd_value(const char *word)
+{
+  for (int isa : {SIMD_AUTO, SIMD_NO, SIMD_PORTABLE, SIMD_AVX2, SIMD_AVX512})
+    if (strcmp(word, simd_name(isa)) == 0) return isa;
+  return SIMD_INVALID;
+}
+
 // what this CPU can run of the compiled instruction sets
 bool PairTLSPH::simd_supported(int isa)
 {
-  if (isa == SIMD_NO || isa == SIMD_PORTABLE) return true;
+  if (isa == SIMD_NO) return true;
+#if !TLSPH_ELL_VEC
+  return false;    // a compiler without GCC's vector extension (or CUDA): the scalar step
+#endif
+  if (isa == SIMD_PORTABLE) return true;
 #if TLSPH_ELL_X86
   __builtin_cpu_init();
   if (isa == SIMD_AVX2) return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
@@ -216,7 +229,8 @@ void PairTLSPH::select_simd()
   if (simd_request == SIMD_AUTO) {
     simd_isa = simd_supported(SIMD_AVX512) ? SIMD_AVX512
         : simd_supported(SIMD_AVX2)        ? SIMD_AVX2
-                                           : SIMD_PORTABLE;
+        : simd_supported(SIMD_PORTABLE)    ? SIMD_PORTABLE
+                                           : SIMD_NO;
     return;
   }
   if (!simd_supported(simd_request))
@@ -580,7 +594,9 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
 {
   const int nlocal = atom->nlocal;
   ell_columns_xv();
+#if TLSPH_ELL_VEC
   if (nlocal > 0) pick_deformation<DIM>(simd_isa)(ell, ell_particles(), F[0]);
+#endif
   const bool need_K = viscosity_active();
   const int ns = ell_nperm, np = packed_size();
   double *pks = ell_soa + (bigint) 3 * DIM * ns;
@@ -618,12 +634,17 @@ void PairTLSPH::simd_forces(int hg, int visc)
   int multi = 0;
   for (int t = 2; t <= atom->ntypes; t++)
     if (std::memcmp(&pairmat[t], &pairmat[1], sizeof(TLSPH::PairMaterial)) != 0) multi = 1;
+#if TLSPH_ELL_VEC
   ForceFn fn;
   if (dim == 2) fn = (order == 1) ? pick_forces_hg<2, 1>(simd_isa, hg, visc, multi)
                                   : pick_forces_hg<2, 2>(simd_isa, hg, visc, multi);
   else fn = (order == 1) ? pick_forces_hg<3, 1>(simd_isa, hg, visc, multi)
                          : pick_forces_hg<3, 2>(simd_isa, hg, visc, multi);
   fn(ell, ell_particles());
+#else
+  (void) visc;
+  (void) multi;
+#endif
 }
 
 /* the virial of the SIMD step: the scalar gather form's tally (its forces

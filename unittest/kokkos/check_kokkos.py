@@ -91,7 +91,12 @@ def lmp_run(args, tag, inp, extra, kk, np=1, env_extra=None):
         inp = plugin_input(args, inp)
     cmd += [args.lmp] + kkflags + ["-in", inp, "-log", tag + ".log", "-screen",
                                                "none", "-var", "out", tag] + list(extra)
-    env = dict(os.environ, OMP_NUM_THREADS=str(args.threads), OMP_PROC_BIND="false")
+    # the CPU styles' scalar step (TLSPH_SIMD=no: pair_style tlsph's default
+    # 'simd' value): the /kk kernels are its twins, bitwise on the host
+    # backend; the SIMD step is checked against the scalar step by the
+    # lammps.Simd.* tests
+    env = dict(os.environ, OMP_NUM_THREADS=str(args.threads), OMP_PROC_BIND="false",
+               TLSPH_SIMD="no")
     if args.plugin:
         env["TLSPH_KK_PLUGIN_TRACE"] = "1"
     env.update(env_extra or {})
