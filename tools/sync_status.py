@@ -121,7 +121,8 @@ def speed_text():
     ev = "M bond-evaluations/s"
     slower = 100.0 * (1.0 - float(d[rate]) / float(t[rate]))
     out += ["", f"On the 3D damage block `tlsph/damage` runs {d[rate]} M particle-steps/s, "
-            f"{slower:.1f} % below `tlsph` with the same (linear) gradient ({t[rate]} M), and "
+            f"{slower:.1f} % below `tlsph` with the same (linear) gradient ({t[rate]} M; `tlsph/damage` "
+            "has only the scalar step, `tlsph` runs its SIMD step), and "
             f"PERI's `peri/pmb` on the same particles (horizon 3.015 dx, {pm['bonds/particle']} "
             f"bonds) {pm[rate]} M: per bond ({d['bonds/particle']} against "
             f"{pm['bonds/particle']}) {d[ev]} M against {pm[ev]} M bond evaluations/s. "
