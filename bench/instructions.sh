@@ -16,6 +16,9 @@
 # each other.  Smaller systems than results.md so that callgrind (~50x slower)
 # stays short; the per-particle work is the same.
 set -euo pipefail
+# the scalar step (pair_style tlsph ... simd no): what doc/roofline.md and
+# bench/instructions.md describe (valgrind runs no AVX-512 code either)
+export TLSPH_SIMD=no
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(dirname "$HERE")"
 LMP="${LMP_TLSPH:-$ROOT/build/lmp_tlsph}"

@@ -15,6 +15,9 @@
 #   bash bench/roofline.sh        (~4 min; needs perf and valgrind, Debian's
 #                                  linux-perf and valgrind packages)
 set -euo pipefail
+# the scalar step (pair_style tlsph ... simd no): what doc/roofline.md and
+# bench/instructions.md describe (valgrind runs no AVX-512 code either)
+export TLSPH_SIMD=no
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(dirname "$HERE")"
 LMP="${LMP_TLSPH:-$ROOT/build/lmp_tlsph}"
