@@ -1484,7 +1484,7 @@ double PairTLSPH::memory_usage()
   bytes += (double) ell_nstart * 5 * sizeof(int);
   if (ell.npat) bytes += (double) ell.pat_start[ell.npat] * (sizeof(int) + (dim + 3) * sizeof(double));
   bytes += (double) ell_nblock_max * TLSPH::ELL_C * (sizeof(int) + (dim + 3) * sizeof(double));
-  bytes += (double) ell_nperm * (2 * sizeof(int) + (3 * dim + packed_size()) * sizeof(double));
+  bytes += (double) ell_nperm * (2 * sizeof(int) + ell_ncolumns() * sizeof(double));
   return bytes;
 }
 

@@ -281,6 +281,7 @@ class PairTLSPH : public Pair {
   void ell_columns_xv();
   void ell_columns_pk(int k0, int k1);
   TLSPH::EllParticles ell_particles();
+  int ell_ncolumns() const;
   virtual bool simd_capable() const { return true; }    // false: styles without the SIMD step
   void select_simd();
   void build_ell();

@@ -6,8 +6,10 @@
    init from the CPU (pair_style ... simd auto) or by the user.
 ------------------------------------------------------------------------- */
 
-// the vector type of tlsph_ell_vec.h passes by value only between inlined
-// functions (instantiated here from tlsph_particle.h): no ABI to keep
+// the vector types of tlsph_ell_vec.h pass by value only between functions
+// that are always inlined (a function taking one out of line would be
+// compiled for the baseline and called from AVX code with another ABI);
+// GCC's note on that ABI (-Wpsabi) is about calls that do not exist then
 #if defined(__GNUC__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
@@ -61,7 +63,7 @@ constexpr double ELL_SHARE_TOL = 1.0e-13;
 constexpr double ELL_UNION_SLACK = 1.25;
 using TLSPH::EllArrays;
 using TLSPH::EllParticles;
-using DeformFn = void (*)(const EllArrays &, const EllParticles &, double *);
+using DeformFn = void (*)(const EllArrays &, const EllParticles &, double *, TLSPH::EllStress *);
 using ForceFn = void (*)(const EllArrays &, const EllParticles &);
 
 #if TLSPH_ELL_VEC
@@ -92,8 +94,9 @@ using ForceFn = void (*)(const EllArrays &, const EllParticles &);
 // the drivers: every chunk, in order (one copy per instruction set)
 #define TLSPH_ELL_DRIVERS(NS, ATTR, PIECES)                                                     \
   namespace NS {                                                                             \
-  template <int DIM>                                                                         \
-  ATTR void deformation(const EllArrays &e, const EllParticles &p, double *F)               \
+  template <int DIM, int ORDER>                                                              \
+  ATTR void deformation(const EllArrays &e, const EllParticles &p, double *F,               \
+                        TLSPH::EllStress *st)                                                \
   {                                                                                          \
     for (int c = 0; c < e.nchunk; c++) {                                                     \
       const int first = e.first[c], n = e.n[c];                                              \
@@ -121,7 +124,7 @@ using ForceFn = void (*)(const EllArrays &, const EllParticles &);
     }                                                                                        \
   }                                                                                          \
   }
-#define ELL_D(w) TLSPH::ell_deformation_stencil<DIM, w>(sl, first, h, p, F)
+#define ELL_D(w) TLSPH::ell_deformation_stencil<DIM, ORDER, w>(sl, first, h, p, F, st)
 #define ELL_F(w) TLSPH::ell_force_stencil<DIM, ORDER, HG, VISC, MULTI, w>(sl, first, h, p)
 
 TLSPH_ELL_DRIVERS(ell_portable, , TLSPH_ELL_PIECES2)
@@ -130,14 +133,14 @@ TLSPH_ELL_DRIVERS(ell_avx2, TLSPH_ATTR_AVX2, TLSPH_ELL_PIECES4)
 TLSPH_ELL_DRIVERS(ell_avx512, TLSPH_ATTR_AVX512, TLSPH_ELL_PIECES8)
 #endif
 
-template <int DIM> DeformFn pick_deformation(int isa)
+template <int DIM, int ORDER> DeformFn pick_deformation(int isa)
 {
 #if TLSPH_ELL_X86
-  if (isa == PairTLSPH::SIMD_AVX512) return ell_avx512::deformation<DIM>;
-  if (isa == PairTLSPH::SIMD_AVX2) return ell_avx2::deformation<DIM>;
+  if (isa == PairTLSPH::SIMD_AVX512) return ell_avx512::deformation<DIM, ORDER>;
+  if (isa == PairTLSPH::SIMD_AVX2) return ell_avx2::deformation<DIM, ORDER>;
 #endif
   (void) isa;
-  return ell_portable::deformation<DIM>;
+  return ell_portable::deformation<DIM, ORDER>;
 }
 
 template <int DIM, int ORDER, int HG, int VISC, int MULTI> ForceFn pick_forces(int isa)
@@ -263,7 +266,7 @@ void PairTLSPH::build_ell()
     memory->create(ell_inv, ell_nperm, "tlsph:ell_inv");
     // columns: x, v, x0c (dim each) and the packed rows
     memory->destroy(ell_soa);
-    memory->create(ell_soa, (bigint) ell_nperm * (3 * dim + packed_size()), "tlsph:ell_soa");
+    memory->create(ell_soa, (bigint) ell_nperm * ell_ncolumns(), "tlsph:ell_soa");
   }
   const double *x0 = x0c[0];
   const auto before = [&](int a, int b) {
@@ -279,6 +282,19 @@ void PairTLSPH::build_ell()
   double *x0s = ell_soa + (bigint) 2 * dim * ns;
   for (int k = 0; k < nall; k++)
     for (int d = 0; d < dim; d++) x0s[(bigint) d * ns + k] = x0[3 * ell_perm[k] + d];
+  // the per-particle constants of the stress lanes (local particles): Q, s, V
+  {
+    const EllParticles cp = ell_particles();
+    const int qsz = correction_size();
+    double *qc = const_cast<double *>(cp.qcol), *sc = const_cast<double *>(cp.scol),
+           *vc = const_cast<double *>(cp.vcol);
+    for (int k = 0; k < nlocal; k++) {
+      const int i = ell_perm[k];
+      for (int q = 0; q < qsz; q++) qc[(bigint) q * ns + k] = Q[i][q];
+      for (int d = 0; d < dim; d++) sc[(bigint) d * ns + k] = sumg[i][d];
+      vc[k] = atom->vfrac[i];
+    }
+  }
 
   // every local particle's bonds sorted by partner in the step's order:
   // (partner, bond) pairs, bo_start per particle
@@ -564,6 +580,12 @@ void PairTLSPH::ell_columns_pk(int k0, int k1)
   }
 }
 
+// columns of ell_soa: x, v, x0c (dim each), the packed rows, Q, s (dim), V, fown (dim)
+int PairTLSPH::ell_ncolumns() const
+{
+  return 3 * dim + packed_size() + correction_size() + dim + 1 + dim;
+}
+
 TLSPH::EllParticles PairTLSPH::ell_particles()
 {
   const int ns = ell_nperm;
@@ -573,6 +595,11 @@ TLSPH::EllParticles PairTLSPH::ell_particles()
   p.vs = ell_soa + (bigint) dim * ns;
   p.x0s = ell_soa + (bigint) 2 * dim * ns;
   p.pks = ell_soa + (bigint) 3 * dim * ns;
+  const int np = packed_size();
+  p.qcol = p.pks + (bigint) np * ns;
+  p.scol = p.qcol + (bigint) correction_size() * ns;
+  p.vcol = p.scol + (bigint) dim * ns;
+  p.fcol = const_cast<double *>(p.vcol) + ns;
   p.perm = ell_perm;
   p.vfrac = atom->vfrac;
   p.fown = fown[0];
@@ -589,22 +616,56 @@ TLSPH::EllParticles PairTLSPH::ell_particles()
 }
 
 /* pass (1) of the SIMD step: F by chunks, then the per-particle stress
-   (as compute_deformation) and the packed rows as columns */
+   (as compute_deformation) and the packed rows as columns; for one
+   isotropic material without the conservative hourglass form the stress
+   too on the lanes (ell_stress_lanes), else particle by particle */
 template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
 {
   const int nlocal = atom->nlocal;
   ell_columns_xv();
-#if TLSPH_ELL_VEC
-  if (nlocal > 0) pick_deformation<DIM>(simd_isa)(ell, ell_particles(), F[0]);
-#endif
   const bool need_K = viscosity_active();
   const int ns = ell_nperm, np = packed_size();
   double *pks = ell_soa + (bigint) 3 * DIM * ns;
+  bool lanes = !LAWS && !(hg_form == 2 && gamma != 0.0) && !alpha_atom;
+  for (int t = 2; lanes && t <= atom->ntypes; t++)
+    lanes = mat[t].lambda == mat[1].lambda && mat[t].mu == mat[1].mu;
+#if TLSPH_ELL_VEC
+  if (nlocal > 0) {
+    TLSPH::EllStress st;
+    if (lanes) {
+      st.law = TLSPH::IsotropicSVK{mat[1].lambda, mat[1].mu, DIM == 2 ? plane_stress : 0};
+      st.need_K = need_K ? 1 : 0;
+      st.Q = Q[0];
+      st.qs = correction_size();
+      st.sumg = sumg[0];
+      st.alpha = alpha;
+      st.F = F[0];
+      st.P = P[0];
+      st.psi = psi;
+      st.ehg = ehg;
+      st.fown = fown[0];
+      st.pk = pk[0];
+      st.np = np;
+      st.pks = pks;
+      st.bad = -1;
+      st.badJ = 0.0;
+    }
+    pick_deformation<DIM, ORDER>(simd_isa)(ell, ell_particles(), F[0], lanes ? &st : nullptr);
+    if (lanes) {
+      if (st.bad >= 0) unstable_particle(st.bad, st.badJ);
+      return;
+    }
+  }
+#else
+  lanes = false;
+#endif
+  double *fcol = ell_particles().fcol;
   for (int k = 0; k < nlocal; k++) {
     const int i = ell_perm[k];
     particle_stress<DIM, ORDER, LAWS>(i, need_K);
     const double *row = pk[i];
     for (int q = 0; q < np; q++) pks[(bigint) q * ns + k] = row[q];
+    for (int d = 0; d < DIM; d++) fcol[(bigint) d * ns + k] = fown[i][d];
   }
 }
 

@@ -86,6 +86,10 @@ struct EllParticles {
   const double *vs;      // DIM columns: v
   const double *x0s;     // DIM columns: x0c (PairTLSPH::x0c)
   const double *pks;     // packed rows as columns (TLSPH::Packed, with R)
+  const double *qcol;    // correction Q (DIM x basis size columns), local particles
+  const double *scol;    // s_i = sum_j g_ij (DIM columns)
+  const double *vcol;    // V_i
+  double *fcol;          // V_i P_i s_i (DIM columns), written by pass (1)
   const int *perm;       // SIMD order -> LAMMPS index
   const double *vfrac;   // by LAMMPS index, as the rest below
   const double *fown;    // 3 per atom: V_i P_i s_i

@@ -83,9 +83,103 @@ template <int DIM> TLSPH_FORCE_INLINE PatternSlots<DIM> pattern_slots(const EllA
    (deformation_gradient_bonds) for lanes h .. h + W - 1 of the chunk whose
    first particle is `first`, its slots from sl; F: 9 per atom, by LAMMPS
    index */
-template <int DIM, int W, class Slots>
+/* The per-particle part of pass (1) on W lanes, for one isotropic material
+   without the conservative hourglass form (particle_stress_row with
+   IsotropicSVK: stress_tensors, then pack_row with R): from F - I (Fa,
+   DIM x DIM) the stress P, psi, J, K = J F^-T, the packed row (into the
+   rows and the columns) and V_i P_i s_i. A lane with J <= 0 or a psi that
+   is not finite is recorded in st.bad (the caller stops the run). Outputs
+   by LAMMPS index. */
+struct EllStress {
+  IsotropicSVK law;
+  int need_K;
+  const double *Q;          // correction_size() per atom
+  int qs;
+  const double *sumg;       // 3 per atom
+  double alpha;             // alpha_i (no per-particle alpha here)
+  double *F, *P, *psi, *ehg, *fown, *pk;    // 9, 9, 1, 1, 3, np per atom
+  int np;
+  double *pks;              // the packed rows' columns (EllParticles::pks)
+  int bad;                  // first lane that failed (LAMMPS index), else -1
+  double badJ;
+};
+
+template <int DIM, int ORDER, int W, class V>
+TLSPH_FORCE_INLINE void ell_stress_lanes(const V *Fa, long i0, const EllParticles &p,
+                                         EllStress &st)
+{
+  using L = Packed<DIM, ORDER>;
+  constexpr int NB = L::NB;
+  V Fm[9], E[9], S[9], P[9], K[9];
+  for (int r = 0; r < 3; r++)
+    for (int k = 0; k < 3; k++)
+      Fm[3 * r + k] = (r < DIM && k < DIM) ? (r == k ? 1.0 : 0.0) + Fa[DIM * r + k]
+                                           : ell_splat<V>(r == k ? 1.0 : 0.0);
+  green_lagrange(Fm, E);
+  const V psi = st.law.template stress<V>(E, S);
+  if (DIM == 2 && st.law.plane_stress)
+    for (int l = 0; l < W; l++) Fm[8][l] = std::sqrt(1.0 + 2.0 * E[8][l]);
+  const V J = mat_det(Fm);
+  mat_mul(Fm, S, P);
+  if (st.need_K) {
+    // K = J F^-T from the cofactors (mat_inverse without its det = 0 test:
+    // such a lane stops the run below)
+    const V c00 = Fm[4] * Fm[8] - Fm[5] * Fm[7], c01 = Fm[5] * Fm[6] - Fm[3] * Fm[8],
+            c02 = Fm[3] * Fm[7] - Fm[4] * Fm[6];
+    const V det = Fm[0] * c00 + Fm[1] * c01 + Fm[2] * c02;
+    const V s = 1.0 / det;
+    V Fi[9];
+    Fi[0] = c00 * s;
+    Fi[1] = (Fm[2] * Fm[7] - Fm[1] * Fm[8]) * s;
+    Fi[2] = (Fm[1] * Fm[5] - Fm[2] * Fm[4]) * s;
+    Fi[3] = c01 * s;
+    Fi[4] = (Fm[0] * Fm[8] - Fm[2] * Fm[6]) * s;
+    Fi[5] = (Fm[2] * Fm[3] - Fm[0] * Fm[5]) * s;
+    Fi[6] = c02 * s;
+    Fi[7] = (Fm[1] * Fm[6] - Fm[0] * Fm[7]) * s;
+    Fi[8] = (Fm[0] * Fm[4] - Fm[1] * Fm[3]) * s;
+    for (int r = 0; r < 3; r++)
+      for (int c = 0; c < 3; c++) K[3 * r + c] = J * Fi[3 * c + r];
+  } else {
+    for (int k = 0; k < 9; k++) K[k] = V{};
+  }
+  // the volume, Q and s of the lanes' particles (columns)
+  const long ns = p.ns;
+  const V Vi = ell_load<V>(p.vcol + i0);
+  V row[L::size], fo[DIM];
+  for (int r = 0; r < DIM; r++) {
+    for (int c = 0; c < NB; c++) {
+      V acc = V{};
+      for (int k = 0; k < DIM; k++) acc += P[3 * r + k] * ell_load<V>(p.qcol + (NB * k + c) * ns + i0);
+      row[L::R + NB * r + c] = Vi * acc;
+    }
+    for (int c = 0; c < DIM; c++) {
+      row[L::F + DIM * r + c] = Fm[3 * r + c];
+      row[L::K + DIM * r + c] = K[3 * r + c];
+    }
+  }
+  row[L::A] = ell_splat<V>(st.alpha);
+  for (int r = 0; r < DIM; r++) {
+    fo[r] = V{};
+    for (int c = 0; c < DIM; c++) fo[r] += Vi * P[3 * r + c] * ell_load<V>(p.scol + c * ns + i0);
+  }
+  for (int q = 0; q < L::size; q++) __builtin_memcpy(st.pks + q * ns + i0, &row[q], sizeof(V));
+  for (int r = 0; r < DIM; r++) __builtin_memcpy(p.fcol + r * ns + i0, &fo[r], sizeof(V));
+  for (int l = 0; l < W; l++) {
+    const long i = p.perm[i0 + l];
+    for (int k = 0; k < 9; k++) st.F[9 * i + k] = Fm[k][l], st.P[9 * i + k] = P[k][l];
+    st.psi[i] = psi[l];
+    st.ehg[i] = 0.0;
+    for (int r = 0; r < 3; r++) st.fown[3 * i + r] = r < DIM ? fo[r][l] : 0.0;
+    for (int q = 0; q < L::size; q++) st.pk[(long) st.np * i + q] = row[q][l];
+    if ((!(J[l] > 0.0) || !std::isfinite(psi[l])) && st.bad < 0) st.bad = (int) i, st.badJ = J[l];
+  }
+}
+
+template <int DIM, int ORDER, int W, class Slots>
 TLSPH_FORCE_INLINE void ell_deformation_stencil(const Slots &sl, int first, int h,
-                                                const EllParticles &p, double *F)
+                                                const EllParticles &p, double *F,
+                                                EllStress *st)
 {
   using V = typename EllVecOf<W>::type;
   const long ns = p.ns, i0 = (long) first + h;
@@ -100,6 +194,10 @@ TLSPH_FORCE_INLINE void ell_deformation_stencil(const Slots &sl, int first, int 
     for (int k = 0; k < DIM; k++) g[k] = sl.template val<V>(m, k, h);
     for (int r = 0; r < DIM; r++)
       for (int k = 0; k < DIM; k++) Fa[DIM * r + k] += du[r] * g[k];
+  }
+  if (st) {
+    ell_stress_lanes<DIM, ORDER, W>(Fa, i0, p, *st);
+    return;
   }
   for (int l = 0; l < W; l++) {
     double *Fi = F + 9 * (long) p.perm[i0 + l];
@@ -140,14 +238,13 @@ TLSPH_FORCE_INLINE void ell_force_stencil(const Slots &sl, int first, int h,
     Ki[k] = ell_load<V>(pks + (L::K + k) * ns + i0);
   }
   const V ai = ell_load<V>(pks + L::A * ns + i0);
-  double tV[C], tc[C], tr[C], tE[C];
+  double tc[C], tr[C], tE[C];
   for (int l = 0; l < C; l++) {
     const int il = p.perm[i0 + l];
-    tV[l] = p.vfrac[il];
     const PairMaterial &mi = p.pm[p.type[MULTI ? il : p.perm[first]]];
     tc[l] = mi.c0, tr[l] = mi.rho, tE[l] = mi.E;
   }
-  const V Vi = ell_load<V>(tV), c0i = ell_load<V>(tc), rhoi = ell_load<V>(tr), Ei = ell_load<V>(tE);
+  const V Vi = ell_load<V>(p.vcol + i0), c0i = ell_load<V>(tc), rhoi = ell_load<V>(tr), Ei = ell_load<V>(tE);
   V as[DIM], av[DIM], avi[DIM], ah[DIM];
   for (int d = 0; d < DIM; d++) as[d] = av[d] = avi[d] = ah[d] = V{};
 
@@ -214,7 +311,7 @@ TLSPH_FORCE_INLINE void ell_force_stencil(const Slots &sl, int first, int h,
   for (int l = 0; l < C; l++) {
     const long i = p.perm[i0 + l];
     for (int r = 0; r < DIM; r++) {
-      const double fs = p.fown[3 * i + r] + as[r][l];
+      const double fs = p.fcol[r * ns + i0 + l] + as[r][l];
       p.f[3 * i + r] += fs + fv[r][l] + ah[r][l];
       if (HG != 2 && p.f_hg) p.f_hg[3 * i + r] = ah[r][l];
       p.f_visc[3 * i + r] = fv[r][l];

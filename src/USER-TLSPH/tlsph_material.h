@@ -37,7 +37,7 @@ TLSPH_INLINE double wave_speed(double lambda, double mu, double rho)
 }
 
 // Green-Lagrange strain E = (F^T F - I)/2
-TLSPH_INLINE void green_lagrange(const double *F, double *E)
+template <class T> TLSPH_FORCE_INLINE void green_lagrange(const T *F, T *E)
 {
   mat_tmul(F, F, E);
   E[0] -= 1.0;
@@ -54,16 +54,17 @@ struct IsotropicSVK {
   // Second Piola-Kirchhoff stress S from Green-Lagrange strain E (E33 is
   // overwritten with the plane-stress value when plane_stress is set).
   // Returns the strain energy density psi(E).
-  TLSPH_INLINE double stress(double *E, double *S) const
+  // (a template on the scalar type: the SIMD step runs it on vectors)
+  template <class T> TLSPH_FORCE_INLINE T stress(T *E, T *S) const
   {
     if (plane_stress) E[8] = -lambda * (E[0] + E[4]) / (lambda + 2.0 * mu);
-    const double tr = E[0] + E[4] + E[8];
+    const T tr = E[0] + E[4] + E[8];
     for (int k = 0; k < 9; ++k) S[k] = 2.0 * mu * E[k];
     S[0] += lambda * tr;
     S[4] += lambda * tr;
     S[8] += lambda * tr;
-    if (plane_stress) S[8] = 0.0;
-    double EE = 0.0;
+    if (plane_stress) S[8] = T{};
+    T EE = T{};
     for (int k = 0; k < 9; ++k) EE += E[k] * E[k];
     return 0.5 * lambda * tr * tr + mu * EE;
   }

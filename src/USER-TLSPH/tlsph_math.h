@@ -47,7 +47,9 @@ TLSPH_INLINE void mat_copy(const double *A, double *B)
 }
 
 // C = A B
-TLSPH_INLINE void mat_mul(const double *A, const double *B, double *C)
+// (mat_mul, mat_tmul, mat_det: templates on the scalar type, so that the
+// SIMD step, tlsph_ell_vec.h, runs the same code on vectors)
+template <class T> TLSPH_FORCE_INLINE void mat_mul(const T *A, const T *B, T *C)
 {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
@@ -55,7 +57,7 @@ TLSPH_INLINE void mat_mul(const double *A, const double *B, double *C)
 }
 
 // C = A^T B
-TLSPH_INLINE void mat_tmul(const double *A, const double *B, double *C)
+template <class T> TLSPH_FORCE_INLINE void mat_tmul(const T *A, const T *B, T *C)
 {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
@@ -84,7 +86,7 @@ TLSPH_INLINE void mat_vec(const double *A, const double *x, double *y)
   y[2] = A[6] * x[0] + A[7] * x[1] + A[8] * x[2];
 }
 
-TLSPH_INLINE double mat_det(const double *A)
+template <class T> TLSPH_FORCE_INLINE T mat_det(const T *A)
 {
   return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) +
       A[2] * (A[3] * A[7] - A[4] * A[6]);
