@@ -381,21 +381,22 @@ void PairTLSPH::build_ell()
     }
     return w;
   };
-  // the largest difference between two sets of slot values (a: C per value
-  // with lanes 0 .. n-1, or n = 1 with stride sa), relative to the largest
-  // magnitude of each quantity (the gradient's components together)
-  const auto spread = [&](const double *q, int w, int n) {
+  /* how far nsets sets of slot values (set 0 the reference; value(s, m, k)
+     is quantity k of slot m in set s) are apart: the largest difference to
+     set 0, relative to the largest magnitude of that quantity in all sets
+     (the gradient's components together) */
+  const auto spread = [&](int w, int nsets, auto value) {
     double scale[TLSPH::EllShape<3>::NV] = {0, 0, 0, 0, 0, 0}, worst = 0.0;
     for (int m = 0; m < w; m++)
       for (int k = 0; k < nv; k++)
-        for (int l = 0; l < n; l++) {
-          const int kk = k < dim ? 0 : k;
-          scale[kk] = std::max(scale[kk], std::fabs(q[(size_t) nv * C * m + C * k + l]));
+        for (int q = 0; q < nsets; q++) {
+          double &sc = scale[k < dim ? 0 : k];
+          sc = std::max(sc, std::fabs(value(q, m, k)));
         }
     for (int m = 0; m < w; m++)
       for (int k = 0; k < nv; k++)
-        for (int l = 1; l < n; l++) {
-          const double a = q[(size_t) nv * C * m + C * k + l], b = q[(size_t) nv * C * m + C * k];
+        for (int q = 1; q < nsets; q++) {
+          const double a = value(q, m, k), b = value(0, m, k);
           if (a != b) worst = std::max(worst, std::fabs(a - b) / scale[k < dim ? 0 : k]);
         }
     return worst;
@@ -412,7 +413,8 @@ void PairTLSPH::build_ell()
     const int w = fill(c);
     ell.pat[c] = -1;
     ell.kind[c] = EllArrays::STENCIL;
-    if (ell.n[c] < 2 || spread(sv.data(), w, ell.n[c]) > ELL_SHARE_TOL) {
+    const auto lane = [&](int l, int m, int k) { return sv[(size_t) nv * C * m + C * k + l]; };
+    if (ell.n[c] < 2 || spread(w, ell.n[c], lane) > ELL_SHARE_TOL) {
       nblock += w;
       continue;
     }
@@ -428,16 +430,10 @@ void PairTLSPH::build_ell()
     int found = -1;
     for (int q : cands) {
       const double *pv = pat_v.data() + (size_t) nv * pat_start[q];
-      double scale[TLSPH::EllShape<3>::NV] = {0, 0, 0, 0, 0, 0}, worst = 0.0;
-      for (size_t e = 0; e < val.size(); e++) {
-        const int k = (int) (e % nv), kk = k < dim ? 0 : k;
-        scale[kk] = std::max(scale[kk], std::fabs(pv[e]));
-      }
-      for (size_t e = 0; e < val.size(); e++) {
-        const int k = (int) (e % nv), kk = k < dim ? 0 : k;
-        if (val[e] != pv[e]) worst = std::max(worst, std::fabs(val[e] - pv[e]) / scale[kk]);
-      }
-      if (worst <= ELL_SHARE_TOL) {
+      const auto set = [&](int which, int m, int k) {
+        return which == 0 ? pv[(size_t) nv * m + k] : val[(size_t) nv * m + k];
+      };
+      if (spread(w, 2, set) <= ELL_SHARE_TOL) {
         found = q;
         break;
       }
@@ -601,8 +597,6 @@ TLSPH::EllParticles PairTLSPH::ell_particles()
   p.vcol = p.scol + (bigint) dim * ns;
   p.fcol = const_cast<double *>(p.vcol) + ns;
   p.perm = ell_perm;
-  p.vfrac = atom->vfrac;
-  p.fown = fown[0];
   p.type = atom->type;
   p.pm = pairmat.data();
   p.f = atom->f[0];

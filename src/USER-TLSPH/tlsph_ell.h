@@ -91,9 +91,7 @@ struct EllParticles {
   const double *vcol;    // V_i
   double *fcol;          // V_i P_i s_i (DIM columns), written by pass (1)
   const int *perm;       // SIMD order -> LAMMPS index
-  const double *vfrac;   // by LAMMPS index, as the rest below
-  const double *fown;    // 3 per atom: V_i P_i s_i
-  const int *type;
+  const int *type;       // by LAMMPS index, as the rest below
   const PairMaterial *pm;
   double *f;             // 3 per atom
   double *f_hg, *f_visc; // 3 per atom (the bond fix's tallies); f_hg may be null

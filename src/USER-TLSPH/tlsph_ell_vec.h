@@ -122,22 +122,9 @@ TLSPH_FORCE_INLINE void ell_stress_lanes(const V *Fa, long i0, const EllParticle
   const V J = mat_det(Fm);
   mat_mul(Fm, S, P);
   if (st.need_K) {
-    // K = J F^-T from the cofactors (mat_inverse without its det = 0 test:
-    // such a lane stops the run below)
-    const V c00 = Fm[4] * Fm[8] - Fm[5] * Fm[7], c01 = Fm[5] * Fm[6] - Fm[3] * Fm[8],
-            c02 = Fm[3] * Fm[7] - Fm[4] * Fm[6];
-    const V det = Fm[0] * c00 + Fm[1] * c01 + Fm[2] * c02;
-    const V s = 1.0 / det;
+    // K = J F^-T (a lane with det = 0 stops the run below)
     V Fi[9];
-    Fi[0] = c00 * s;
-    Fi[1] = (Fm[2] * Fm[7] - Fm[1] * Fm[8]) * s;
-    Fi[2] = (Fm[1] * Fm[5] - Fm[2] * Fm[4]) * s;
-    Fi[3] = c01 * s;
-    Fi[4] = (Fm[0] * Fm[8] - Fm[2] * Fm[6]) * s;
-    Fi[5] = (Fm[2] * Fm[3] - Fm[0] * Fm[5]) * s;
-    Fi[6] = c02 * s;
-    Fi[7] = (Fm[1] * Fm[6] - Fm[0] * Fm[7]) * s;
-    Fi[8] = (Fm[0] * Fm[4] - Fm[1] * Fm[3]) * s;
+    mat_inverse_unchecked(Fm, Fi);
     for (int r = 0; r < 3; r++)
       for (int c = 0; c < 3; c++) K[3 * r + c] = J * Fi[3 * c + r];
   } else {

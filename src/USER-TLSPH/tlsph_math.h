@@ -106,14 +106,16 @@ TLSPH_INLINE double mat_norm(const double *A)
 }
 
 // B = A^{-1}; returns det(A). B is left untouched when det(A) == 0.
-TLSPH_INLINE double mat_inverse(const double *A, double *B)
+/* B = A^-1 from the cofactors, without a test of det(A) (returned): a
+   template on the scalar type (the SIMD step runs it on vectors, where a
+   lane with det = 0 stops the run) */
+template <class T> TLSPH_FORCE_INLINE T mat_inverse_unchecked(const T *A, T *B)
 {
-  const double c00 = A[4] * A[8] - A[5] * A[7];
-  const double c01 = A[5] * A[6] - A[3] * A[8];
-  const double c02 = A[3] * A[7] - A[4] * A[6];
-  const double det = A[0] * c00 + A[1] * c01 + A[2] * c02;
-  if (det == 0.0) return det;
-  const double s = 1.0 / det;
+  const T c00 = A[4] * A[8] - A[5] * A[7];
+  const T c01 = A[5] * A[6] - A[3] * A[8];
+  const T c02 = A[3] * A[7] - A[4] * A[6];
+  const T det = A[0] * c00 + A[1] * c01 + A[2] * c02;
+  const T s = 1.0 / det;
   B[0] = c00 * s;
   B[1] = (A[2] * A[7] - A[1] * A[8]) * s;
   B[2] = (A[1] * A[5] - A[2] * A[4]) * s;
@@ -124,6 +126,15 @@ TLSPH_INLINE double mat_inverse(const double *A, double *B)
   B[7] = (A[1] * A[6] - A[0] * A[7]) * s;
   B[8] = (A[0] * A[4] - A[1] * A[3]) * s;
   return det;
+}
+
+// B = A^-1; returns det(A), and leaves B as it was when det(A) = 0
+TLSPH_INLINE double mat_inverse(const double *A, double *B)
+{
+  const double det = A[0] * (A[4] * A[8] - A[5] * A[7]) + A[1] * (A[5] * A[6] - A[3] * A[8]) +
+      A[2] * (A[3] * A[7] - A[4] * A[6]);
+  if (det == 0.0) return det;
+  return mat_inverse_unchecked(A, B);
 }
 
 TLSPH_INLINE double dot3(const double *a, const double *b)
