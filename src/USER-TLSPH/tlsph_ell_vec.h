@@ -17,6 +17,10 @@
 
 namespace TLSPH {
 
+// the per-particle stress lanes (below; declared for every compiler, since
+// pair_tlsph_simd.cpp names the type in its dispatch table)
+struct EllStress;
+
 #if defined(__GNUC__) && !defined(__CUDACC__)
 #define TLSPH_ELL_VEC 1
 /* Stencil chunks with explicit vectors: GCC's vector extension, C doubles
