@@ -20,9 +20,10 @@
 #   3. speed: 3D tlsph/damage/kk, FP64, bench/in.gpu at about 0.25, 1, 4 and
 #      16 M particles, newton on and off: ns per particle-step of the
 #      ordinary steps, and the time of one neighbor rebuild (bond cache
-#      built on the GPU from the bond fix's partner rows); sizes left when
-#      the budget (330 s from the start, --budget) is spent, or a run cut at
-#      it, are listed as skipped (speed.csv)
+#      built on the GPU from the bond fix's partner rows); a size is listed
+#      as skipped when the budget (330 s from the start, --budget) is spent,
+#      when the last run's time scaled by the particle count would overrun
+#      it, or when a run was cut at it (speed.csv)
 #   4. the device's copy bandwidth (bin/gpu_bandwidth), the roofline ceiling
 #      (bandwidth.txt)
 #   3a. the thesis's 3D Kalthoff-Winkler deck with -sf kk: time to solution
@@ -158,20 +159,31 @@ fi
 
 # --- 3. speed --------------------------------------------------------------
 echo "size_M,natoms,newton,nsteps,loop_s,ns_per_particle_step,rebuild_steps,rebuild_loop_s,ms_per_rebuild,status" > "$OUTD/speed.csv"
+# A run's wall time is mostly its set-up on one host core (the partner
+# search, the first bond cache), which grows with the particles: a size is
+# skipped when the last run's time scaled by the particle count would not
+# end before the budget (a run started anyway would be cut and wasted).
+last_t="" last_n=""
 for m in $SIZES; do
   n=$(python3 -c "print(max(4, round(($m * 1e6) ** (1.0 / 3.0))))")
   for newton in off on; do
-    if [ "$(elapsed)" -ge "$BUDGET" ]; then
-      echo "$m,,$newton,,,,,,,skipped (budget ${BUDGET}s spent)" >> "$OUTD/speed.csv"
+    left=$((BUDGET + 40 - $(elapsed)))
+    pred=0
+    [ -n "$last_t" ] && pred=$(python3 -c "print(int($last_t * $n ** 3 / $last_n ** 3) + 1)")
+    if [ "$(elapsed)" -ge "$BUDGET" ] || [ "$pred" -gt "$left" ]; then
+      echo "$m,,$newton,,,,,,,skipped (budget ${BUDGET}s: about ${pred}s needed; ${left}s left)" >> "$OUTD/speed.csv"
+      say "speed $m M particles, newton $newton: skipped (about ${pred}s needed, ${left}s left)"
       continue
     fi
     tag="speed_${m}M_$newton"
     say "speed $m M particles (n = $n), newton $newton"
     ns=100; [ "$MODE" = host ] && ns=10
-    (cd "$WORK" && timeout $((BUDGET + 40 - $(elapsed))) "$LMP" "${KFLAGS[@]}" -sf kk \
+    t1=$(date +%s)
+    (cd "$WORK" && timeout "$left" "$LMP" "${KFLAGS[@]}" -sf kk \
        -pk kokkos newton "$newton" neigh full comm device -in "$REPO/bench/in.gpu" \
        -var n "$n" -var nsteps "$ns" -var nrebuild 5 -log "$tag.log" -screen none) > /dev/null 2>&1
     st=$?
+    last_t=$(( $(date +%s) - t1 )) last_n=$n
     python3 - "$WORK/$tag.log" "$m" "$newton" "$st" >> "$OUTD/speed.csv" <<'PARSE'
 import re, sys
 log, m, newton, st = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
