@@ -19,6 +19,7 @@
 #include "force.h"
 #include "modify.h"
 #include "kokkos.h"
+#include "neighbor_kokkos.h"
 #include "memory.h"
 #include "pair_tlsph_damage.h"
 #include "pair_tlsph_step.h"
@@ -114,6 +115,15 @@ void PairTLSPHKokkosT<DeviceType, Base>::init_style()
                               "a host backend", force->pair_style, fix->id, fix->style);
     }
   }
+
+  // LAMMPS's neighbor check (neigh_modify check yes: every step) runs where
+  // the perpetual neighbor lists live; with no list but the bond fix's
+  // occasional host list that is the host, which copied x to the host every
+  // step on a GPU (seen there by the atom ledger of kokkos.transfers). The
+  // /kk pairs build no list of their own, so they ask NeighborKokkos to check
+  // (and hold x at a build) on the device, as a Kokkos pair with a device
+  // list would.
+  if (on_device()) static_cast<NeighborKokkos *>(this->neighbor)->device_flag = 1;
 
   // materials, per type, to the device (pair_coeff cannot change them during a run)
   const int nt = atom->ntypes + 1;
