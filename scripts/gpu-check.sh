@@ -28,6 +28,8 @@
 #      (bandwidth.txt)
 #   3a. the thesis's 3D Kalthoff-Winkler deck with -sf kk: time to solution
 #      against the 2 CPU cores of the build machine (kalthoff3d.txt)
+#   2b. a kernel profile of the step with Nsight Compute where the machine
+#      has it (ncu.txt)
 #   summary.md: the tables; logs.tar.xz: every LAMMPS log. At most 8 files,
 #   in DIR (default: $OUT when set, else gpu-check-out/).
 #
@@ -122,6 +124,26 @@ for c in forces restart damage transfers cache; do
   say "test $c: $r"
 done
 
+# --- 2b. a kernel profile (Nsight Compute, where the machine has it) -------
+# The step's kernels on 0.25 M particles of bench/in.gpu (newton off, the
+# default layout): duration, DRAM and L1/L2 throughput against the device's
+# peak, SM throughput, occupancy (ncu.txt; the summary lists them). Needs
+# access to the GPU's performance counters; without it ncu says so.
+if [ "$MODE" = gpu ]; then
+  NCU=$(command -v ncu || ls /usr/local/cuda/bin/ncu /usr/local/cuda-*/bin/ncu 2>/dev/null | head -n1)
+  if [ -n "$NCU" ] && [ "$(elapsed)" -lt $((BUDGET - 200)) ]; then
+    say "kernel profile ($NCU)"
+    (cd "$WORK" && timeout 90 "$NCU" --section SpeedOfLight --section Occupancy --section LaunchStats \
+       --kernel-name-base demangled --kernel-name regex:"force_kernel|break_kernel|deformation_kernel|damage_step|smooth_kernel|FixNVE" \
+       --launch-skip 8 --launch-count 10 --csv "$LMP" "${KFLAGS[@]}" -sf kk \
+       -pk kokkos newton off neigh full comm device -in "$REPO/bench/in.gpu" -var n 63 -var nsteps 3 \
+       -var nrebuild 1 -log ncu_lammps.log -screen none) > "$OUTD/ncu.txt" 2>&1
+    echo "(ncu exit $?)" >> "$OUTD/ncu.txt"
+  else
+    echo "no kernel profile: ${NCU:-no ncu on this machine}${NCU:+ (budget)}" > "$OUTD/ncu.txt"
+  fi
+fi
+
 # --- 3a. the thesis's 3D Kalthoff-Winkler deck: time to solution ---------
 # examples/kalthoff-3d at the thesis resolution (dx = 1 mm) with the thesis's
 # model, -sf kk, to its end (100 us): wall time, against 943 s measured on
@@ -158,33 +180,37 @@ else
 fi
 
 # --- 3. speed --------------------------------------------------------------
-echo "size_M,natoms,newton,nsteps,loop_s,ns_per_particle_step,rebuild_steps,rebuild_loop_s,ms_per_rebuild,status" > "$OUTD/speed.csv"
+echo "size_M,natoms,newton,layout,nsteps,loop_s,ns_per_particle_step,rebuild_steps,rebuild_loop_s,ms_per_rebuild,status" > "$OUTD/speed.csv"
 # A run's wall time is mostly its set-up on one host core (the partner
 # search, the first bond cache), which grows with the particles: a size is
 # skipped when the last run's time scaled by the particle count would not
 # end before the budget (a run started anyway would be cut and wasted).
+# Each size runs newton off and on with the default bond layout (sliced,
+# chunks of 32 particles on a GPU); the two smallest also newton off with
+# rows (TLSPH_KK_SLICE=1), the layout's side-by-side comparison.
 last_t="" last_n=""
-for m in $SIZES; do
+speed_run() {    # speed_run M NEWTON SLICE ("" = default)
+  local m=$1 newton=$2 sl=$3 n left pred tag ns t1 st lay
   n=$(python3 -c "print(max(4, round(($m * 1e6) ** (1.0 / 3.0))))")
-  for newton in off on; do
-    left=$((BUDGET + 40 - $(elapsed)))
-    pred=0
-    [ -n "$last_t" ] && pred=$(python3 -c "print(int($last_t * $n ** 3 / $last_n ** 3) + 1)")
-    if [ "$(elapsed)" -ge "$BUDGET" ] || [ "$pred" -gt "$left" ]; then
-      echo "$m,,$newton,,,,,,,skipped (budget ${BUDGET}s: about ${pred}s needed; ${left}s left)" >> "$OUTD/speed.csv"
-      say "speed $m M particles, newton $newton: skipped (about ${pred}s needed, ${left}s left)"
-      continue
-    fi
-    tag="speed_${m}M_$newton"
-    say "speed $m M particles (n = $n), newton $newton"
-    ns=100; [ "$MODE" = host ] && ns=10
-    t1=$(date +%s)
-    (cd "$WORK" && timeout "$left" "$LMP" "${KFLAGS[@]}" -sf kk \
-       -pk kokkos newton "$newton" neigh full comm device -in "$REPO/bench/in.gpu" \
-       -var n "$n" -var nsteps "$ns" -var nrebuild 5 -log "$tag.log" -screen none) > /dev/null 2>&1
-    st=$?
-    last_t=$(( $(date +%s) - t1 )) last_n=$n
-    python3 - "$WORK/$tag.log" "$m" "$newton" "$st" >> "$OUTD/speed.csv" <<'PARSE'
+  lay=${sl:-default}
+  left=$((BUDGET + 40 - $(elapsed)))
+  pred=0
+  [ -n "$last_t" ] && pred=$(python3 -c "print(int($last_t * $n ** 3 / $last_n ** 3) + 1)")
+  if [ "$(elapsed)" -ge "$BUDGET" ] || [ "$pred" -gt "$left" ]; then
+    echo "$m,,$newton,$lay,,,,,,,skipped (budget ${BUDGET}s: about ${pred}s needed; ${left}s left)" >> "$OUTD/speed.csv"
+    say "speed $m M particles, newton $newton, layout $lay: skipped (about ${pred}s needed, ${left}s left)"
+    return
+  fi
+  tag="speed_${m}M_${newton}${sl:+_slice$sl}"
+  say "speed $m M particles (n = $n), newton $newton, layout $lay"
+  ns=100; [ "$MODE" = host ] && ns=10
+  t1=$(date +%s)
+  (cd "$WORK" && TLSPH_KK_SLICE=$sl timeout "$left" "$LMP" "${KFLAGS[@]}" -sf kk \
+     -pk kokkos newton "$newton" neigh full comm device -in "$REPO/bench/in.gpu" \
+     -var n "$n" -var nsteps "$ns" -var nrebuild 5 -log "$tag.log" -screen none) > /dev/null 2>&1
+  st=$?
+  last_t=$(( $(date +%s) - t1 )) last_n=$n
+  python3 - "$WORK/$tag.log" "$m" "$newton" "$st" >> "$OUTD/speed.csv" <<'PARSE'
 import re, sys
 log, m, newton, st = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
 try:
@@ -193,20 +219,30 @@ except OSError:
     s = ""
 loops = [(float(a), int(b), int(c)) for a, b, c in
          re.findall(r"^Loop time of (\S+) on \d+ procs for (\d+) steps with (\d+) atoms", s, re.M)]
+lay = re.findall(r"layout: chunks of (\d+) particles: the last cache \S+ records for \S+ bonds on "
+                 r"rank 0 = (\S+) % padding", s)
+layout = ("C=%s (%s%% pad)" % lay[-1]) if lay else "?"
 if st == 124:
-    print("%s,,%s,,,,,,,skipped (timed out at the budget)" % (m, newton))
+    print("%s,,%s,%s,,,,,,,skipped (timed out at the budget)" % (m, newton, layout))
     sys.exit(0)
 if st != 0 or len(loops) != 3:
     err = re.findall(r"^ERROR.*$", s, re.M)
-    print("%s,,%s,,,,,,,FAILED (exit %d%s)" % (m, newton, st, ": " + err[0].replace(",", ";") if err else ""))
+    print("%s,,%s,%s,,,,,,,FAILED (exit %d%s)" % (m, newton, layout, st,
+                                                 ": " + err[0].replace(",", ";") if err else ""))
     sys.exit(0)
 (_, _, nat), (t, ns, _), (tr, nr, _) = loops
 per = t / (nat * ns) * 1e9
 reb = (tr - t / ns * nr) / nr * 1e3
-print("%s,%d,%s,%d,%.4f,%.3f,%d,%.4f,%.2f,ok" % (m, nat, newton, ns, t, per, nr, tr, reb))
+print("%s,%d,%s,%s,%d,%.4f,%.3f,%d,%.4f,%.2f,ok" % (m, nat, newton, layout, ns, t, per, nr, tr, reb))
 PARSE
-    tail -n1 "$OUTD/speed.csv" | grep -q ',FAILED' && fail=1
-  done
+  tail -n1 "$OUTD/speed.csv" | grep -q ',FAILED' && fail=1
+}
+k=0
+for m in $SIZES; do
+  speed_run "$m" off ""
+  speed_run "$m" on ""
+  [ $k -lt 2 ] && speed_run "$m" off 1
+  k=$((k + 1))
 done
 
 # --- 4. bandwidth ----------------------------------------------------------
@@ -230,14 +266,43 @@ print("\n## tests\n")
 for m in re.finditer(r"^### (\S+): (\S+)$", open(os.path.join(d, "tests.txt")).read(), re.M):
     print("- %s: %s" % (m.group(1), m.group(2)))
 print("\n## speed (3D tlsph/damage/kk, FP64)\n")
-print("| M particles | atoms | newton | ns / particle-step | ms / rebuild | status |")
-print("|---|---|---|---|---|---|")
+print("| M particles | atoms | newton | bond layout | ns / particle-step | ms / rebuild | status |")
+print("|---|---|---|---|---|---|---|")
 for r in csv.DictReader(open(os.path.join(d, "speed.csv"))):
-    print("| %s | %s | %s | %s | %s | %s |" % (r["size_M"], r["natoms"], r["newton"],
+    print("| %s | %s | %s | %s | %s | %s | %s |" % (r["size_M"], r["natoms"], r["newton"], r["layout"],
           r["ns_per_particle_step"], r["ms_per_rebuild"], r["status"]))
 print("\n## 3D Kalthoff-Winkler, time to solution\n")
 for line in open(os.path.join(d, "kalthoff3d.txt")):
     print("    " + line.rstrip())
+try:
+    if os.path.exists(os.path.join(d, "ncu.txt")):
+        print("\n## kernel profile (ncu, 0.25 M particles)\n")
+        rows = {}
+        want = ("Duration", "DRAM Throughput", "Memory Throughput", "L1/TEX Cache Throughput",
+                "L2 Cache Throughput", "Compute (SM) Throughput", "Achieved Occupancy",
+                "Registers Per Thread", "Block Size")
+        text = open(os.path.join(d, "ncu.txt")).read()
+        for r in csv.reader(l for l in text.splitlines() if l.startswith('"')):
+            if len(r) < 15 or r[0] == "ID":
+                continue
+            name = r[4]
+            short = None
+            for pat in (r"force_kernel\w*<[^>]*>", r"break_kernel<[^>]*>", r"deformation_kernel<[^>]*>",
+                        r"FixNVEKokkos", r"PairTLSPHDamageKokkos", r"\w*Kokkos\w*"):
+                short = short or re.search(pat, name)
+            key = (r[0], short.group(0) if short else name[:40])
+            if r[12] in want:
+                rows.setdefault(key, {})[r[12]] = r[14] + (" " + r[13] if r[13] and r[13] != "%" else "%" if r[13] == "%" else "")
+        if rows:
+            print("| launch | kernel | " + " | ".join(want) + " |")
+            print("|---" * (len(want) + 2) + "|")
+            for (i, k), v in sorted(rows.items(), key=lambda kv: int(kv[0][0])):
+                print("| %s | %s | %s |" % (i, k, " | ".join(v.get(w, "") for w in want)))
+        else:
+            for line in text.splitlines()[-6:]:
+                print("    " + line)
+except Exception as e:    # the profile is extra: never lose the summary over it
+    print("(ncu.txt not parsed: %s)" % e)
 print("\n## bandwidth\n")
 for line in open(os.path.join(d, "bandwidth.txt")):
     print("    " + line.rstrip())

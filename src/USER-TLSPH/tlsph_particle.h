@@ -82,15 +82,21 @@ template <int DIM, class Rows> struct LeanBonds {
   CubicSpline kernel;
   double Vi;
   int order;
-  TLSPH_INLINE int partner(int m) const { return j[m]; }
-  TLSPH_INLINE const double *grad(int m) const { return g + DIM * m; }
+  // bond m of this particle is record m * stride of j, g, w: 1 for rows (a
+  // particle's bonds one after another), C for the sliced layout of the /kk
+  // styles on a GPU (the bonds of C consecutive particles interleaved slot by
+  // slot, so that the C threads of a warp read adjacent records)
+  int stride = 1;
+  TLSPH_INLINE long slot(int m) const { return (long) m * stride; }
+  TLSPH_INLINE int partner(int m) const { return j[slot(m)]; }
+  TLSPH_INLINE const double *grad(int m) const { return g + DIM * slot(m); }
   template <int D> TLSPH_INLINE void ref(int m, double *X) const
   {
-    const double *xj = X0(j[m]);
+    const double *xj = X0(j[slot(m)]);
     for (int d = 0; d < D; d++) X[d] = xj[d] - X0i[d];
   }
-  TLSPH_INLINE double wv(int m) const { return w[2 * m]; }
-  TLSPH_INLINE double whg(int m) const { return w[2 * m + 1]; }
+  TLSPH_INLINE double wv(int m) const { return w[2 * slot(m)]; }
+  TLSPH_INLINE double whg(int m) const { return w[2 * slot(m) + 1]; }
   TLSPH_INLINE double reverse_weight(int m) const
   {
     double X[3] = {0.0, 0.0, 0.0};
@@ -134,8 +140,9 @@ struct VirialTally {
    tlsph/damage on the CPU, in the tlsph/damage/kk kernel and in the host
    replay of the kernel's breaks, so that all three leave the same order. */
 template <int DIM>
-TLSPH_INLINE void swap_bond(int *j, double *g, double *w, int *k, int a, int b)
+TLSPH_INLINE void swap_bond(int *j, double *g, double *w, int *k, int a, int b, int S = 1)
 {
+  a *= S, b *= S;    // records a S and b S (LeanBonds::stride)
   const int tj = j[a], tk = k[a];
   j[a] = j[b], j[b] = tj;
   k[a] = k[b], k[b] = tk;
@@ -150,14 +157,15 @@ TLSPH_INLINE void swap_bond(int *j, double *g, double *w, int *k, int a, int b)
 }
 
 template <int DIM>
-TLSPH_INLINE void drop_bond(int *j, double *g, double *w, int *k, int m, int &nlead, int &n)
+TLSPH_INLINE void drop_bond(int *j, double *g, double *w, int *k, int m, int &nlead, int &n,
+                           int S = 1)
 {
   if (m < nlead) {
-    swap_bond<DIM>(j, g, w, k, m, nlead - 1);
-    swap_bond<DIM>(j, g, w, k, nlead - 1, n - 1);
+    swap_bond<DIM>(j, g, w, k, m, nlead - 1, S);
+    swap_bond<DIM>(j, g, w, k, nlead - 1, n - 1, S);
     nlead--;
   } else {
-    swap_bond<DIM>(j, g, w, k, m, n - 1);
+    swap_bond<DIM>(j, g, w, k, m, n - 1, S);
   }
   n--;
 }
@@ -358,7 +366,7 @@ TLSPH_INLINE void apply_correction(Bond *b, int nb, const double *Vj, const Cubi
 
 /* The bond math of particle i at a bond cache build (PairTLSPH::build_bond_cache
    on the host, PairTLSPHKokkosT::build_bond_cache_device on a Kokkos device):
-   from its partners j[0..nall) (slots k[0..nall); the nb intact bonds first,
+   from its partners j[0..nall) (slots k[0..nall), record m at m S; the nb intact bonds first,
    then broken ones that only enter the correction) and the reference
    positions x0c(j) (consistent with the periodic images), the records
    b[0..nall) and partner volumes Vj[0..nall) (scratch), the correction Q,
@@ -370,14 +378,15 @@ template <int DIM, int ORDER, class X0>
 TLSPH_INLINE int particle_bonds(int i, const int *j, const int *k, int nall, int nb, const X0 &x0c,
                                 const double *vfrac, const CubicSpline &kernel,
                                 double kernel_scale, const double *frozen, Bond *b, double *Vj,
-                                double *Q, double *sumg, double *g, double *w)
+                                double *Q, double *sumg, double *g, double *w, int S = 1)
 {
   const double *xi = x0c(i);
   for (int m = 0; m < nall; m++) {
-    const double *xj = x0c(j[m]);
+    const int jm = j[(long) m * S], km = k[(long) m * S];
+    const double *xj = x0c(jm);
     const double X[3] = {xj[0] - xi[0], xj[1] - xi[1], DIM == 2 ? 0.0 : xj[2] - xi[2]};
-    make_bond(kernel, X, vfrac[i], vfrac[j[m]], j[m], k[m], b[m], kernel_scale);
-    Vj[m] = vfrac[j[m]];
+    make_bond(kernel, X, vfrac[i], vfrac[jm], jm, km, b[m], kernel_scale);
+    Vj[m] = vfrac[jm];
   }
   int achieved = ORDER;
   if (frozen) {
@@ -393,9 +402,10 @@ TLSPH_INLINE int particle_bonds(int i, const int *j, const int *k, int nall, int
       for (int d = 0; d < 3; d++) sumg[d] += b[m].g[d];
   }
   for (int m = 0; m < nall; m++) {
-    for (int d = 0; d < DIM; d++) g[DIM * m + d] = b[m].g[d];
-    w[2 * m] = b[m].wv;
-    w[2 * m + 1] = b[m].whg;
+    const long r = (long) m * S;
+    for (int d = 0; d < DIM; d++) g[DIM * r + d] = b[m].g[d];
+    w[2 * r] = b[m].wv;
+    w[2 * r + 1] = b[m].whg;
   }
   return achieved;
 }

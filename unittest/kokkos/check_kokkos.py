@@ -663,7 +663,7 @@ def case_cache(args):
                              True, np=np, env_extra=env)
             problems += ["%s: %s" % (t, q) for q in p]
             rep = re.findall(r"^tlsph/kk bond cache: (\d+) device builds, (\d+) host builds"
-                             r"(?: \(per device build[^)]*\))?, the device builds checked against the host build: largest relative "
+                             r"(?: \(per device build[^)]*\))?(?:; layout: [^,]*)?, the device builds checked against the host build: largest relative "
                              r"difference (\S+)$", out, re.M)
             dev = sum(int(r[0]) for r in rep)
             worst = max((float(r[2]) for r in rep), default=math.inf)

@@ -76,7 +76,7 @@ void FixTLSPHVelocityFilterKokkos<DeviceType>::filter()
         double s[3] = {0.0, 0.0, 0.0}, wsum = 0.0;
         const int *bj = b.bj + b.start[i];
         for (int m = 0; m < b.nbond[i]; m++) {
-          const int j = bj[m];
+          const int j = bj[(long) m * b.stride];
           double r2 = 0.0;
           for (int d = 0; d < DIM; d++) {
             const double X = b.x0c[3 * j + d] - b.x0c[3 * i + d];

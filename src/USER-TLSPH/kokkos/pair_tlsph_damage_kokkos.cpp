@@ -76,6 +76,7 @@ int PairTLSPHDamageKokkos<DeviceType>::break_kernel()
   const int *start = this->d_start.data();
   int *nb = this->d_nbond.data(), *nl = this->d_nlead.data(), *bj = this->d_bj.data(),
       *bk = this->d_bk.data();
+  const int C = this->slice;    // bond m of i: record start[i] + m C
   double *bg = this->d_bg.data(), *bw = this->d_bw.data(), *sumg = this->d_sumg.data();
   const double *x0c = this->d_x0c.data(), *Q = this->d_Q.data();
   double *F = this->d_F.data(), *P = this->d_P.data(), *pk = this->d_pk.data(),
@@ -108,7 +109,8 @@ int PairTLSPHDamageKokkos<DeviceType>::break_kernel()
         double Fa[DIM * DIM];
         for (int k = 0; k < DIM * DIM; k++) Fa[k] = 0.0;
         for (int m = 0; m < n;) {
-          const int j = bj_[m];
+          const long r = (long) m * C;
+          const int j = bj_[r];
           const int tj = type(j);
           const double *xj = x(j), *x0j = x0c + 3 * j;
           const double lim_up = PAIRS ? up[ti * ntp + tj] * (1.0 - 1.0e-10) : up0;
@@ -119,12 +121,12 @@ int PairTLSPHDamageKokkos<DeviceType>::break_kernel()
                                            sc[ti] < sc[tj] ? sc[ti] : sc[tj], du)) {
             const int e = Kokkos::atomic_fetch_add(&count(), 1);
             broken_i(e) = i;
-            broken_m(e) = bk_[m];    // the bond's slot in the bond fix's rows
-            for (int d = 0; d < DIM; d++) sumg[3 * i + d] -= bg_[DIM * m + d];
-            TLSPH::drop_bond<DIM>(bj_, bg_, bw_, bk_, m, nlead_i, n);
+            broken_m(e) = bk_[r];    // the bond's slot in the bond fix's rows
+            for (int d = 0; d < DIM; d++) sumg[3 * i + d] -= bg_[DIM * r + d];
+            TLSPH::drop_bond<DIM>(bj_, bg_, bw_, bk_, m, nlead_i, n, C);
             continue;
           }
-          const double *gm = bg_ + DIM * m;
+          const double *gm = bg_ + DIM * r;
           for (int r = 0; r < DIM; r++)
             for (int c = 0; c < DIM; c++) Fa[DIM * r + c] += du[r] * gm[c];
           m++;
@@ -229,10 +231,11 @@ template <class DeviceType> void PairTLSPHDamageKokkos<DeviceType>::damage_step(
   (void) nall;
   double *mark = d_mark.data();
   const int *start = this->d_start.data(), *bj = this->d_bj.data();
+  const int C = this->slice;
   Kokkos::parallel_for(
       "tlsph/damage/kk:mark", Kokkos::RangePolicy<DeviceType>(0, nlocal), KOKKOS_LAMBDA(const int i) {
         double c = 0.0;
-        for (int m = 0; m < nb[i]; m++) c += (phi[bj[start[i] + m]] > 0.0) ? 1.0 : 0.0;
+        for (int m = 0; m < nb[i]; m++) c += (phi[bj[start[i] + (long) m * C]] > 0.0) ? 1.0 : 0.0;
         mark[i] = c;
       });
 
@@ -246,6 +249,7 @@ void PairTLSPHDamageKokkos<DeviceType>::smooth_kernel()
 {
   const int nlocal = this->atom->nlocal;
   const int *nb = this->d_nbond.data(), *start = this->d_start.data(), *bj = this->d_bj.data();
+  const int C = this->slice;
   const double *phi = d_phi.data(), *mark = d_mark.data(), *x0c = this->d_x0c.data();
   double *phis = d_phis.data(), *pk = this->d_pk.data();
   const TLSPH::CubicSpline kern = this->kernel;
@@ -263,7 +267,7 @@ void PairTLSPHDamageKokkos<DeviceType>::smooth_kernel()
         } else {
           double num = 0.0, den = 0.0;
           for (int m = 0; m < nb[i]; m++) {
-            const int j = bj[start[i] + m];
+            const int j = bj[start[i] + (long) m * C];
             double r2 = 0.0;
             for (int d = 0; d < DIM; d++) {
               const double X = x0c[3 * j + d] - x0c[3 * i + d];

@@ -41,17 +41,19 @@ class PairTLSPHDamageKokkos : public PairTLSPHKokkosT<DeviceType, PairTLSPHDamag
   double memory_usage() override;
 
   // what fix tlsph/velocity/filter/kk reads on the device (valid after a
-  // force call): the intact bonds of local particle i are bj[start[i] ..
-  // start[i] + nbond[i]), X_ij = x0c_j - x0c_i (3 per particle), phi its damage
+  // force call): the intact bonds of local particle i are bj[start[i] + m
+  // stride] for m < nbond[i] (the sliced layout, pair_tlsph_kokkos.h),
+  // X_ij = x0c_j - x0c_i (3 per particle), phi its damage
   struct DeviceBonds {
     const int *start, *nbond, *bj;
     const double *x0c, *phi;
     TLSPH::CubicSpline kernel;
+    int stride;
   };
   DeviceBonds device_bonds() const
   {
     return DeviceBonds{this->d_start.data(), this->d_nbond.data(), this->d_bj.data(),
-                       this->d_x0c.data(), d_phi.data(), this->kernel};
+                       this->d_x0c.data(), d_phi.data(), this->kernel, this->slice};
   }
 
   // the kernels (public: device lambdas may not live in private members)

@@ -33,6 +33,7 @@
 #include <map>
 #include <string>
 #include <utility>
+#include <type_traits>
 #include <vector>
 
 using namespace LAMMPS_NS;
@@ -62,6 +63,22 @@ PairTLSPHKokkosT<DeviceType, Base>::PairTLSPHKokkosT(LAMMPS *lmp) : Base(lmp)
   uploaded_version = -1;
   work_device = false;
   forces_on_host = true;
+  set_slice();
+}
+
+/* the chunk size C of the device's sliced bond layout (pair_tlsph_kokkos.h) */
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::set_slice()
+{
+  slice = (on_device() && !TLSPHKK::device_model()) ? 32 : 1;
+  const char *e = std::getenv("TLSPH_KK_SLICE");
+  if (e == nullptr || *e == '\0') return;
+  char *end = nullptr;
+  const long v = std::strtol(e, &end, 10);
+  if (*end != '\0' || v < 1 || v > 1024)
+    error->all(FLERR, "TLSPH_KK_SLICE must be a whole number from 1 to 1024 (the particles of a "
+                      "chunk of the /kk bond layout; 1: rows), not '{}'", e);
+  slice = (int) v;
 }
 
 
@@ -164,19 +181,75 @@ template <class DeviceType, class Base>
 void PairTLSPHKokkosT<DeviceType, Base>::upload_bond_cache()
 {
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
-  const size_t nb = bond_start[nlocal];
-  upload(d_start, bond_start, nlocal + 1, "tlsph/kk:bond_start");
-  upload(d_nbond, nbond, nlocal, "tlsph/kk:nbond");
-  upload(d_nlead, nlead, nlocal, "tlsph/kk:nlead");
-  upload(d_bj, lean.j, nb, "tlsph/kk:bond_j");
-  upload(d_bg, lean.g, nb * dim, "tlsph/kk:bond_g");
-  upload(d_bw, lean.w, nb * 2, "tlsph/kk:bond_w");
-  upload(d_bk, lean.k, nb, "tlsph/kk:bond_k");
+  const size_t nb = upload_rows(true);
   upload(d_Q, Q[0], (size_t) nlocal * correction_size(), "tlsph/kk:Q");
   upload(d_sumg, sumg[0], (size_t) nlocal * 3, "tlsph/kk:sumg");
   upload(d_x0c, x0c[0], (size_t) nall * 3, "tlsph/kk:x0c");
   uploaded_version = cache_version;
   after_cache_build(nb);
+}
+
+/* The host's rows of the bond cache (bond_start, nbond, nlead, lean: j, k
+   and with_gw g, w) to the device in the sliced layout of `slice`
+   particles per chunk (pair_tlsph_kokkos.h); returns the records in all.
+   With slice 1 the rows go up as they are. */
+template <class DeviceType, class Base>
+size_t PairTLSPHKokkosT<DeviceType, Base>::upload_rows(bool with_gw)
+{
+  const int nlocal = atom->nlocal, C = slice;
+  std::vector<int> st(nlocal + 1), nc(nlocal);
+  size_t total = 0;
+  for (int c0 = 0; c0 < nlocal; c0 += C) {
+    const int c1 = MIN(nlocal, c0 + C);
+    int width = 0;
+    for (int i = c0; i < c1; i++) {
+      nc[i] = bond_start[i + 1] - bond_start[i];
+      width = MAX(width, nc[i]);
+      st[i] = (int) total + (i - c0);
+    }
+    total += (size_t) C * width;
+  }
+  st[nlocal] = (int) total;
+  layout_records = (double) total;
+  layout_bonds = (double) bond_start[nlocal];
+  upload(d_start, st.data(), nlocal + 1, "tlsph/kk:bond_start");
+  upload(d_ncache, nc.data(), nlocal, "tlsph/kk:ncache");
+  upload(d_nbond, nbond, nlocal, "tlsph/kk:nbond");
+  upload(d_nlead, nlead, nlocal, "tlsph/kk:nlead");
+  // one array at a time through a host copy in the sliced order (the
+  // records between rows: zero)
+  auto put = [&](auto &view, const auto *rows, int per, const char *name) {
+    using T = typename std::remove_const<typename std::remove_pointer<decltype(rows)>::type>::type;
+    if (C == 1) {
+      upload(view, rows, total * per, name);
+      return;
+    }
+    std::vector<T> out(total * per, T(0));
+    for (int i = 0; i < nlocal; i++)
+      for (int m = 0; m < nc[i]; m++)
+        for (int d = 0; d < per; d++)
+          out[((size_t) st[i] + (size_t) m * C) * per + d] = rows[((size_t) bond_start[i] + m) * per + d];
+    upload(view, out.data(), out.size(), name);
+  };
+  put(d_bj, lean.j, 1, "tlsph/kk:bond_j");
+  put(d_bk, lean.k, 1, "tlsph/kk:bond_k");
+  if (with_gw) {
+    put(d_bg, lean.g, dim, "tlsph/kk:bond_g");
+    put(d_bw, lean.w, 2, "tlsph/kk:bond_w");
+  }
+  return total;
+}
+
+/* the device's record of bond 0 of each particle (and the records in all,
+   st[nlocal]) and its cached bonds: the sliced layout read back */
+template <class DeviceType, class Base>
+void PairTLSPHKokkosT<DeviceType, Base>::download_rows(std::vector<int> &st, std::vector<int> &nc)
+{
+  const int nlocal = atom->nlocal;
+  st.resize(nlocal + 1);
+  nc.resize(nlocal);
+  download(st.data(), d_start, 0, nlocal + 1);
+  download(nc.data(), d_ncache, 0, nlocal);
 }
 
 /* ----------------------------------------------------------------------
@@ -256,6 +329,7 @@ size_t PairTLSPHKokkosT<DeviceType, Base>::resolve_bonds_device()
   auto *avec = static_cast<AtomVecPeriKokkos *>(atom->avec);
   avec->k_x0.template sync<DeviceType>();
   TLSPHKK::reserve(d_start, (size_t) nlocal + 1, "tlsph/kk:bond_start");
+  TLSPHKK::reserve(d_ncache, MAX(nlocal, 1), "tlsph/kk:ncache");
   TLSPHKK::reserve(d_nbond, nlocal, "tlsph/kk:nbond");
   TLSPHKK::reserve(d_nlead, nlocal, "tlsph/kk:nlead");
 
@@ -267,6 +341,8 @@ size_t PairTLSPHKokkosT<DeviceType, Base>::resolve_bonds_device()
   const auto x0 = avec->k_x0.template view<DeviceType>();
   const double *x0cd = d_x0c.data();
   int *start = d_start.data(), *nbd = d_nbond.data(), *nld = d_nlead.data();
+  int *ncache = d_ncache.data();
+  const int C = slice;
   const bool all = this->correction_from_all_partners;
   const int INTACT = FixTLSPHBonds::INTACT, BROKEN = FixTLSPHBonds::BROKEN;
   const int twod = (dim == 2);
@@ -288,20 +364,36 @@ size_t PairTLSPHKokkosT<DeviceType, Base>::resolve_bonds_device()
             n++;
           }
         }
-        start[i] = n;
+        ncache[i] = n;
       },
       missing);
   int nbtot = 0;
   if (missing == 0) {
-    // (2) the row starts: an exclusive scan, the total in start[nlocal]
+    // (2) the layout: per chunk of C particles its width (longest row), an
+    // exclusive scan of C x width gives each chunk's first record, the total
+    // in base[nchunk]; particle i = c C + l starts at base_c + l
+    const int nchunk = (nlocal + C - 1) / C;
+    TLSPHKK::reserve(d_cbase, (size_t) nchunk + 1, "tlsph/kk:chunk_base");
+    int *cbase = d_cbase.data();
     Kokkos::parallel_scan(
-        "tlsph/kk:resolve_scan", Kokkos::RangePolicy<DeviceType>(0, nlocal + 1),
-        KOKKOS_LAMBDA(const int i, int &upd, const bool final) {
-          const int c = (i < nlocal) ? start[i] : 0;
-          if (final) start[i] = upd;
-          upd += c;
+        "tlsph/kk:resolve_scan", Kokkos::RangePolicy<DeviceType>(0, nchunk + 1),
+        KOKKOS_LAMBDA(const int c, int &upd, const bool final) {
+          int width = 0;
+          if (c < nchunk)
+            for (int i = c * C; i < c * C + C && i < nlocal; i++) width = (ncache[i] > width) ? ncache[i] : width;
+          if (final) cbase[c] = upd;
+          upd += C * width;
         },
         nbtot);
+    Kokkos::parallel_for(
+        "tlsph/kk:resolve_starts", Kokkos::RangePolicy<DeviceType>(0, nlocal + 1),
+        KOKKOS_LAMBDA(const int i) { start[i] = (i < nlocal) ? cbase[i / C] + i % C : cbase[nchunk]; });
+    double cached = 0.0;
+    Kokkos::parallel_reduce(
+        "tlsph/kk:resolve_bonds", Kokkos::RangePolicy<DeviceType>(0, nlocal),
+        KOKKOS_LAMBDA(const int i, double &sum) { sum += ncache[i]; }, cached);
+    layout_records = (double) nbtot;
+    layout_bonds = cached;
   }
   double image_error = 0.0;
   if (missing == 0) {
@@ -354,8 +446,8 @@ size_t PairTLSPHKokkosT<DeviceType, Base>::resolve_bonds_device()
                                      (X[2] - Xm[2]) * (X[2] - Xm[2])) /
                                     (Xm[0] * Xm[0] + Xm[1] * Xm[1] + Xm[2] * Xm[2]));
               if (!(e <= emax)) emax = e;
-              bj[s0 + n] = j;
-              bk[s0 + n] = k;
+              bj[s0 + (long) n * C] = j;
+              bk[s0 + (long) n * C] = k;
               n++;
             }
             if (pass == 0) nld[i] = n;
@@ -393,12 +485,7 @@ void PairTLSPHKokkosT<DeviceType, Base>::build_bond_cache()
     double shepard_max;
     int shepard_i;
     this->resolve_bonds(false, shepard_max, shepard_i);    // (no check: no Shepard sums)
-    nb = bond_start[nlocal];
-    upload(d_start, bond_start, nlocal + 1, "tlsph/kk:bond_start");
-    upload(d_nbond, nbond, nlocal, "tlsph/kk:nbond");
-    upload(d_nlead, nlead, nlocal, "tlsph/kk:nlead");
-    upload(d_bj, lean.j, nb, "tlsph/kk:bond_j");
-    upload(d_bk, lean.k, nb, "tlsph/kk:bond_k");
+    nb = upload_rows(false);
     upload(d_x0c, x0c[0], (size_t) nall * 3, "tlsph/kk:x0c");
   }
   const double t1 = MPI_Wtime();
@@ -464,6 +551,8 @@ long long PairTLSPHKokkosT<DeviceType, Base>::bond_math_chunk(int first, int las
                                                         bool has_frozen, double kscale)
 {
   const int *start = d_start.data(), *nbd = d_nbond.data(), *bj = d_bj.data(), *bk = d_bk.data();
+  const int *ncache = d_ncache.data();
+  const int C = slice;
   const TLSPH::StridedRows x0{d_x0c.data(), 3};
   const double *vfrac =
       static_cast<AtomVecPeriKokkos *>(atom->avec)->k_vfrac.template view<DeviceType>().data();
@@ -477,13 +566,13 @@ long long PairTLSPHKokkosT<DeviceType, Base>::bond_math_chunk(int first, int las
   Kokkos::parallel_reduce(
       "tlsph/kk:bond_math", Kokkos::RangePolicy<DeviceType>(first, last),
       KOKKOS_LAMBDA(const int i, long long &acc) {
-        const int s = start[i], nall = start[i + 1] - s;
+        const int s = start[i], nall = ncache[i];
         double *fz = frozen ? frozen + (size_t) i * (1 + nq) : nullptr;
         const double *fq = (fz && fz[0] == 1.0) ? fz + 1 : nullptr;
         const int a = TLSPH::particle_bonds<DIM, ORDER>(
             i, bj + s, bk + s, nall, nbd[i], x0, vfrac, kern, kscale, fq,
             scratch + (size_t) (i - first) * maxn, vjs + (size_t) (i - first) * maxn, Q + qs * i,
-            sumg + 3 * i, bg + (size_t) DIM * s, bw + 2 * (size_t) s);
+            sumg + 3 * i, bg + (size_t) DIM * s, bw + 2 * (size_t) s, C);
         if (fq) return;
         if (a < ORDER) acc += 1;
         if (fz) {
@@ -505,20 +594,44 @@ long long PairTLSPHKokkosT<DeviceType, Base>::bond_math_chunk(int first, int las
 template <class DeviceType, class Base>
 void PairTLSPHKokkosT<DeviceType, Base>::check_device_cache()
 {
-  const int nlocal = atom->nlocal;
-  int nbdev;    // the device's bond count (its row starts' total)
-  download(&nbdev, d_start, nlocal, 1);
-  const size_t nb = nbdev;
-  std::vector<double> g(nb * dim), w(nb * 2), q((size_t) nlocal * correction_size()), sg((size_t) nlocal * 3);
-  std::vector<int> bj(nb), bk(nb), st(nlocal + 1), nbd(nlocal), nld(nlocal);
-  download(bj.data(), d_bj, 0, nb);
-  download(bk.data(), d_bk, 0, nb);
-  download(st.data(), d_start, 0, nlocal + 1);
+  const int nlocal = atom->nlocal, C = slice;
+  std::vector<int> st, nc;    // the device's layout: record of bond 0, bonds cached
+  download_rows(st, nc);
+  const size_t nrec = st[nlocal];    // records in all
+  std::vector<double> gs(nrec * dim), ws(nrec * 2), q((size_t) nlocal * correction_size()), sg((size_t) nlocal * 3);
+  std::vector<int> bjs(nrec), bks(nrec), nbd(nlocal), nld(nlocal);
+  download(bjs.data(), d_bj, 0, nrec);
+  download(bks.data(), d_bk, 0, nrec);
   download(nbd.data(), d_nbond, 0, nlocal);
   download(nld.data(), d_nlead, 0, nlocal);
-  download(g.data(), d_bg, 0, g.size());
-  download(w.data(), d_bw, 0, w.size());
+  download(gs.data(), d_bg, 0, gs.size());
+  download(ws.data(), d_bw, 0, ws.size());
   download(q.data(), d_Q, 0, q.size());
+  // the device's cache as rows (the host build's layout): bond m of i at
+  // record st[i] + m C; the layout itself must be the documented one
+  bool layout = true;
+  std::vector<int> rs(nlocal + 1, 0);
+  for (int c0 = 0, base = 0; c0 < nlocal; c0 += C) {
+    int width = 0;
+    for (int i = c0; i < MIN(nlocal, c0 + C); i++) {
+      layout = layout && st[i] == base + (i - c0);
+      width = MAX(width, nc[i]);
+    }
+    base += C * width;
+    if (c0 + C >= nlocal) layout = layout && (size_t) base == nrec;
+  }
+  for (int i = 0; i < nlocal; i++) rs[i + 1] = rs[i] + nc[i];
+  const size_t nb = rs[nlocal];
+  std::vector<double> g(nb * dim), w(nb * 2);
+  std::vector<int> bj(nb), bk(nb);
+  for (int i = 0; i < nlocal; i++)
+    for (int m = 0; m < nc[i]; m++) {
+      const size_t r = (size_t) st[i] + (size_t) m * C, h = (size_t) rs[i] + m;
+      bj[h] = bjs[r];
+      bk[h] = bks[r];
+      for (int d = 0; d < dim; d++) g[h * dim + d] = gs[r * dim + d];
+      for (int d = 0; d < 2; d++) w[h * 2 + d] = ws[r * 2 + d];
+    }
   download(sg.data(), d_sumg, 0, sg.size());
   const bool has_frozen = this->correction_from_all_partners && this->bonds->nfrozen;
   std::vector<double> fz;
@@ -535,10 +648,10 @@ void PairTLSPHKokkosT<DeviceType, Base>::check_device_cache()
     worst = MAX(worst, scale > 0.0 ? diff / scale : diff);
   };
   // the partners: equal, index by index (the host build's resolve_bonds)
-  bool same = (size_t) bond_start[nlocal] == nb;
+  bool same = layout && (size_t) bond_start[nlocal] == nb;
   for (size_t m = 0; same && m < nb; m++) same = bj[m] == lean.j[m] && bk[m] == lean.k[m];
   for (int i = 0; same && i < nlocal; i++)
-    same = st[i] == bond_start[i] && nbd[i] == nbond[i] && nld[i] == nlead[i];
+    same = rs[i] == bond_start[i] && nbd[i] == nbond[i] && nld[i] == nlead[i];
   if (!same) worst = INFINITY;
   cmp(g, lean.g);
   cmp(w, lean.w);
@@ -567,7 +680,8 @@ PairTLSPHKokkosT<DeviceType, Base>::device_cache() const
                      d_x0c.data(),
                      avec->k_vfrac.template view<DeviceType>().data(),
                      kernel,
-                     order};
+                     order,
+                     slice};
 }
 
 /* pass (1) of tlsph/kk: the deformation kernel for the dimension, gradient
@@ -980,6 +1094,11 @@ void PairTLSPHKokkosT<DeviceType, Base>::report_copies(bigint nsteps)
                           "{} on the device; uploads {:.3f} ms, bond math {:.3f} ms)",
                           1e3 * build_time[0] / device_builds, device_builds, device_resolves,
                           1e3 * build_time[1] / device_builds, 1e3 * build_time[2] / device_builds);
+    if (device_builds || host_builds)
+      line += fmt::format("; layout: chunks of {} particles: the last cache {:.0f} records for "
+                          "{:.0f} bonds on rank 0 = {:.1f} % padding", slice, layout_records,
+                          layout_bonds,
+                          layout_records > 0.0 ? 100.0 * (1.0 - layout_bonds / layout_records) : 0.0);
     if (env_flag("TLSPH_KK_CACHE_CHECK"))
       line += fmt::format(", the device builds checked against the host build: largest "
                           "relative difference {:.3g}", cache_check_worst);
@@ -1102,13 +1221,22 @@ void PairTLSPHKokkosT<DeviceType, Base>::sync_host()
   // the CPU velocity filter: counts, row starts, partner indices); the
   // device holds the bond cache, breaks included
   if (uploaded_version >= 0 && d_start.extent(0) > (size_t) nlocal) {
-    int nb;
-    download(&nb, d_start, nlocal, 1);
+    // the sliced layout back to rows (bond m of i at record st[i] + m slice)
+    std::vector<int> st, nc;
+    download_rows(st, nc);
+    const size_t nrec = st[nlocal];
+    std::vector<int> js(nrec);
+    download(js.data(), d_bj, 0, nrec);
+    int nb = 0;
+    for (int i = 0; i < nlocal; i++) nb += nc[i];
     this->reserve_bond_cache(nb);
-    download(bond_start, d_start, 0, nlocal + 1);
     download(nbond, d_nbond, 0, nlocal);
     download(nlead, d_nlead, 0, nlocal);
-    download(lean.j, d_bj, 0, nb);
+    bond_start[0] = 0;
+    for (int i = 0; i < nlocal; i++) {
+      bond_start[i + 1] = bond_start[i] + nc[i];
+      for (int m = 0; m < nc[i]; m++) lean.j[bond_start[i] + m] = js[(size_t) st[i] + (size_t) m * slice];
+    }
   }
   host_current = 1;
   host_step = update->ntimestep;
@@ -1181,7 +1309,8 @@ double PairTLSPHKokkosT<DeviceType, Base>::memory_usage()
   for (const dview *v : {&d_Q, &d_sumg, &d_F, &d_P, &d_fown, &d_pk, &d_psi, &d_ehg, &d_x0c,
                          &d_fhg, &d_fvisc, &d_bg, &d_bw, &d_whg, &d_wvisc})
     bytes += sizeof(double) * v->extent(0);
-  for (const iview *v : {&d_nbond, &d_nlead, &d_start, &d_bj, &d_bk}) bytes += sizeof(int) * v->extent(0);
+  for (const iview *v : {&d_nbond, &d_nlead, &d_start, &d_bj, &d_bk, &d_ncache, &d_cbase})
+    bytes += sizeof(int) * v->extent(0);
   return bytes;
 }
 

@@ -77,17 +77,18 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
 
   // what every kernel reads of the bond cache, by value in the kernels:
   // bonds<DIM>(i) is particle i's view of its bonds (pair_tlsph.h: bonds_of)
+  // (bond m of particle i is record start[i] + m stride: the sliced layout)
   struct DeviceCache {
     const int *start, *bj;
     const double *bg, *bw, *x0c, *vfrac;
     TLSPH::CubicSpline kernel;
-    int order;
+    int order, stride;
     template <int DIM> KOKKOS_INLINE_FUNCTION TLSPH::LeanBonds<DIM, TLSPH::StridedRows> bonds(int i) const
     {
       const int s = start[i];
       return TLSPH::LeanBonds<DIM, TLSPH::StridedRows>{
           bj + s, bg + DIM * s, bw + 2 * s, TLSPH::StridedRows{x0c, 3}, x0c + 3 * i, kernel,
-          vfrac[i], order};
+          vfrac[i], order, stride};
     }
   };
   DeviceCache device_cache() const;
@@ -157,6 +158,22 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   dview d_Q, d_sumg, d_F, d_P, d_fown, d_pk, d_psi, d_ehg, d_x0c, d_fhg, d_fvisc;
   iview d_nbond, d_nlead, d_start, d_bj, d_bk;
   dview d_bg, d_bw;
+  /* The sliced layout of the device's bond cache (doc/kokkos-cuda.md): the
+     particles in chunks of `slice` (C) consecutive ones; chunk c has room
+     for C x width_c records, width_c its longest row, from record base_c;
+     particle i = c C + l has its bond m at record base_c + l + m C, so the
+     C threads of a warp, one particle each, read adjacent records of the
+     same slot. C = 1 is the row layout of the CPU styles. d_start[i] is the
+     record of bond 0, d_start[nlocal] the records in all; d_ncache[i] the
+     bonds cached for i (the intact ones, then for the correction broken ones
+     still present). Default: 32 (a warp) on a GPU, 1 on a host backend;
+     TLSPH_KK_SLICE=C sets it (the tests run the host backend with C > 1). */
+  int slice = 1;
+  double layout_records = 0.0, layout_bonds = 0.0;    // of the last cache on the device
+  iview d_ncache, d_cbase;
+  void set_slice();
+  size_t upload_rows(bool with_gw);    // host rows (bond_start, lean) into the sliced layout
+  void download_rows(std::vector<int> &st, std::vector<int> &nc);
   Kokkos::View<Material *, DeviceType> d_mat;
   Kokkos::View<TLSPH::PairMaterial *, DeviceType> d_pm;
   int uploaded_version;    // cache_version of the bond cache on the device
