@@ -189,14 +189,15 @@ echo "size_M,natoms,newton,layout,nsteps,loop_s,ns_per_particle_step,rebuild_ste
 # end before the budget (a run started anyway would be cut and wasted).
 # Each size runs newton off with the default bond layout (sliced, chunks of
 # 32 particles on a GPU); the two smallest also newton on, and newton off
-# with rows (TLSPH_KK_SLICE=1), the layout's side-by-side comparison (the
+# with rows (TLSPH_KK_SLICE=1), and with the partner rows read as columns
+# (TLSPH_KK_PK_COLUMNS=1): side-by-side comparisons (the
 # larger sizes' set-up on the host takes most of a run's time: 4 M
 # particles about 100 s).
 last_t="" last_n=""
-speed_run() {    # speed_run M NEWTON SLICE ("" = default)
-  local m=$1 newton=$2 sl=$3 n left pred tag ns t1 st lay
+speed_run() {    # speed_run M NEWTON SLICE ("" = default) [PK_COLUMNS]
+  local m=$1 newton=$2 sl=$3 pc=${4:-} n left pred tag ns t1 st lay
   n=$(python3 -c "print(max(4, round(($m * 1e6) ** (1.0 / 3.0))))")
-  lay=${sl:-default}
+  lay=${sl:-default}${pc:+ + columns}
   left=$((BUDGET + 40 - $(elapsed)))
   pred=0
   [ -n "$last_t" ] && pred=$(python3 -c "print(int($last_t * $n ** 3 / $last_n ** 3) + 1)")
@@ -205,11 +206,11 @@ speed_run() {    # speed_run M NEWTON SLICE ("" = default)
     say "speed $m M particles, newton $newton, layout $lay: skipped (about ${pred}s needed, ${left}s left)"
     return
   fi
-  tag="speed_${m}M_${newton}${sl:+_slice$sl}"
+  tag="speed_${m}M_${newton}${sl:+_slice$sl}${pc:+_columns}"
   say "speed $m M particles (n = $n), newton $newton, layout $lay"
   ns=100; [ "$MODE" = host ] && ns=10
   t1=$(date +%s)
-  (cd "$WORK" && TLSPH_KK_SLICE=$sl timeout "$left" "$LMP" "${KFLAGS[@]}" -sf kk \
+  (cd "$WORK" && TLSPH_KK_SLICE=$sl TLSPH_KK_PK_COLUMNS=$pc timeout "$left" "$LMP" "${KFLAGS[@]}" -sf kk \
      -pk kokkos newton "$newton" neigh full comm device -in "$REPO/bench/in.gpu" \
      -var n "$n" -var nsteps "$ns" -var nrebuild 5 -log "$tag.log" -screen none) > /dev/null 2>&1
   st=$?
@@ -226,6 +227,8 @@ loops = [(float(a), int(b), int(c)) for a, b, c in
 lay = re.findall(r"layout: chunks of (\d+) particles: the last cache \S+ records for \S+ bonds on "
                  r"rank 0 = (\S+) % padding", s)
 layout = ("C=%s (%s%% pad)" % lay[-1]) if lay else "?"
+if "(partner rows read as columns)" in s:
+    layout += " + columns"
 if st == 124:
     print("%s,,%s,%s,,,,,,,skipped (timed out at the budget)" % (m, newton, layout))
     sys.exit(0)
@@ -247,6 +250,7 @@ for m in $SIZES; do
   if [ $k -lt 2 ]; then
     speed_run "$m" on ""
     speed_run "$m" off 1
+    speed_run "$m" off "" 1
   fi
   k=$((k + 1))
 done

@@ -114,6 +114,21 @@ struct StridedRows {
   int stride;
   TLSPH_INLINE const double *operator()(int j) const { return base + (long) stride * j; }
 };
+/* The same rows stored column by column (value k of row j at base[k stride
+   + j]): the /kk force kernel's packed rows on a GPU, where the threads of a
+   warp read value k of their partners j, nearby indices, from nearby
+   addresses instead of one row each (TLSPH_KK_PK_COLUMNS). A row is read by
+   index only. */
+struct ColumnRows {
+  const double *base;
+  long stride;
+  struct Row {
+    const double *p;
+    long s;
+    TLSPH_INLINE double operator[](int k) const { return p[k * s]; }
+  };
+  TLSPH_INLINE Row operator()(int j) const { return Row{base + j, stride}; }
+};
 struct TypeArray {
   const int *t;
   TLSPH_INLINE int operator()(int j) const { return t[j]; }
@@ -762,9 +777,10 @@ struct NoPairs {
    forces on as well. Pi (the own stress) is needed with VISIT or SCATTER,
    otherwise it may be null. */
 template <int DIM, int ORDER, int HG, int VISC, int VISIT, int SCATTER = 0, class Bonds,
-          class Rows, class Types, class Visitor, class Scatter = NoScatter, class Pairs = NoPairs>
+          class Rows, class PkRows, class Types, class Visitor, class Scatter = NoScatter,
+          class Pairs = NoPairs>
 TLSPH_FORCE_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, int nb,
-                                             const Rows &x, const Rows &v, const Rows &pk,
+                                             const Rows &x, const Rows &v, const PkRows &pk,
                                              const Types &type, const PairMaterial *mat, double h,
                                              double beta, double gamma, const double *Pi,
                                              double *fs, double *fv, double *fh,
@@ -779,7 +795,8 @@ TLSPH_FORCE_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, i
   constexpr bool half = SCATTER && Pairs::enabled;
   // particle i's own blocks and material, held in registers for the bond loop
   // (local accumulators too: the outputs could alias the particle arrays)
-  const double *pi = pk(i);
+  // (pk(j) is a row pointer, or a row of ColumnRows: values read by index only)
+  const auto pi = pk(i);
   double Fi[DIM * DIM], Ki[DIM * DIM], xi[DIM], vi[DIM];
   for (int k = 0; k < DIM * DIM; k++) Fi[k] = pi[L::F + k], Ki[k] = pi[L::K + k];
   const double *xr = x(i), *vr = v(i);
@@ -794,7 +811,7 @@ TLSPH_FORCE_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, i
   for (int m = 0; m < nb; m++) {
     const int j = b.partner(m);
     const double *gm = b.grad(m);
-    const double *pj = pk(j);
+    const auto pj = pk(j);
     double fb[3] = {0.0, 0.0, 0.0};
     double X[DIM];
     if (!SCATTER || (!half && (HG || VISC))) b.template ref<DIM>(m, X);
@@ -854,8 +871,9 @@ TLSPH_FORCE_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, i
       }
     }
     if (HG) {
-      double ph[DIM];
-      hourglass_pair<DIM, HG>(Fi, pj + L::F, X, xij, r2, eps2, inv_both,
+      double ph[DIM], Fj[DIM * DIM];
+      for (int k = 0; k < DIM * DIM; k++) Fj[k] = pj[L::F + k];
+      hourglass_pair<DIM, HG>(Fi, Fj, X, xij, r2, eps2, inv_both,
                               gamma * 0.5 * (mi.E + mj.E), Vi * b.whg(m), ph);
       for (int d = 0; d < DIM; d++) {
         ah[d] += ph[d];
@@ -869,7 +887,7 @@ TLSPH_FORCE_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, i
   if (half && (HG || VISC)) {
     for (int m = 0; m < pairs.nlead; m++) {
       const int j = b.partner(m);
-      const double *pj = pk(j);
+      const auto pj = pk(j);
       double X[DIM];
       b.template ref<DIM>(m, X);
       double xij[3] = {0.0, 0.0, 0.0}, r2, inv_both;
@@ -888,7 +906,9 @@ TLSPH_FORCE_INLINE void particle_force_bonds(int i, double Vi, const Bonds &b, i
         }
       }
       if (HG) {
-        hourglass_pair<DIM, HG>(Fi, pj + L::F, X, xij, r2, eps2, inv_both,
+        double Fj[DIM * DIM];
+        for (int k = 0; k < DIM * DIM; k++) Fj[k] = pj[L::F + k];
+        hourglass_pair<DIM, HG>(Fi, Fj, X, xij, r2, eps2, inv_both,
                                 gamma * 0.5 * (mi.E + mj.E), Vi * b.whg(m), ph);
         for (int d = 0; d < DIM; d++) ah[d] += ph[d];
       }

@@ -71,6 +71,12 @@ template <class DeviceType, class Base>
 void PairTLSPHKokkosT<DeviceType, Base>::set_slice()
 {
   slice = (on_device() && !TLSPHKK::device_model()) ? 32 : 1;
+  const char *pc = std::getenv("TLSPH_KK_PK_COLUMNS");
+  if (pc && *pc) {
+    if (std::string(pc) != "0" && std::string(pc) != "1")
+      error->all(FLERR, "TLSPH_KK_PK_COLUMNS must be 0 or 1, not '{}'", pc);
+    pk_columns = std::string(pc) == "1";
+  }
   const char *e = std::getenv("TLSPH_KK_SLICE");
   if (e == nullptr || *e == '\0') return;
   char *end = nullptr;
@@ -751,6 +757,29 @@ template <class DeviceType, class Base>
 template <int DIM, int ORDER, int HG, int VISC, int VIRIAL>
 void PairTLSPHKokkosT<DeviceType, Base>::force_kernel(double *vir)
 {
+  const int ps = packed_size();
+  if (!pk_columns) {
+    force_gather<DIM, ORDER, HG, VISC, VIRIAL>(vir, TLSPH::StridedRows{d_pk.data(), ps});
+    return;
+  }
+  // the packed rows of the local and ghost particles, column by column
+  const int nall = atom->nlocal + atom->nghost;
+  TLSPHKK::reserve(d_pkc, (size_t) ps * MAX(nall, 1), "tlsph/kk:packed_columns");
+  const double *pk = d_pk.data();
+  double *pkc = d_pkc.data();
+  Kokkos::parallel_for(
+      "tlsph/kk:packed_columns", Kokkos::RangePolicy<DeviceType>(0, nall), KOKKOS_LAMBDA(const int j) {
+        for (int k = 0; k < ps; k++) pkc[(long) k * nall + j] = pk[(long) ps * j + k];
+      });
+  force_gather<DIM, ORDER, HG, VISC, VIRIAL>(vir, TLSPH::ColumnRows{pkc, nall});
+}
+
+/* pass (2), the gather form, with the partner rows read through pkr; an
+   ordinary step (no virial) runs it as a parallel_for */
+template <class DeviceType, class Base>
+template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, class Rows>
+void PairTLSPHKokkosT<DeviceType, Base>::force_gather(double *vir, const Rows &pkr)
+{
   using TLSPH::StridedRows;
   const int nlocal = atom->nlocal;
   const StridedRows x{atomKK->k_x.template view<DeviceType>().data(), 3};
@@ -760,31 +789,37 @@ void PairTLSPHKokkosT<DeviceType, Base>::force_kernel(double *vir)
   const DeviceCache dc = device_cache();
   const int *nb = d_nbond.data();
   const double *P = d_P.data(), *fown = d_fown.data();
-  const StridedRows pkr{d_pk.data(), packed_size()};
   double *fhg = d_fhg.data(), *fvisc = d_fvisc.data();
   const TLSPH::PairMaterial *pm = d_pm.data();
   const double hh = h, bb = beta, gg = gamma;
 
+  auto body = KOKKOS_LAMBDA(const int i, double *vacc) {
+    const auto b = dc.template bonds<DIM>(i);
+    const double Vi = b.Vi;
+    double fs[3] = {fown[3 * i], fown[3 * i + 1], fown[3 * i + 2]};
+    double fv[3] = {0.0, 0.0, 0.0}, fh[3] = {0.0, 0.0, 0.0};
+    const TLSPH::VirialTally tally{vacc};
+    TLSPH::particle_force_bonds<DIM, ORDER, HG, VISC, VIRIAL, 0>(
+        i, Vi, b, nb[i], x, v, pkr, type, pm, hh, bb, gg, P + 9 * i, fs, fv, fh, tally);
+    for (int d = 0; d < DIM; d++) f[3 * i + d] += fs[d] + fv[d] + fh[d];
+    for (int d = 0; d < 3; d++) {
+      fhg[3 * i + d] = (HG != 2) ? fh[d] : 0.0;
+      fvisc[3 * i + d] = fv[d];
+    }
+  };
+  if (!VIRIAL) {
+    Kokkos::parallel_for(
+        "tlsph/kk:forces", Kokkos::RangePolicy<DeviceType>(0, nlocal), KOKKOS_LAMBDA(const int i) {
+          double none[6];    // (no tally without VIRIAL)
+          body(i, none);
+        });
+    return;
+  }
   EV_FLOAT ev;
   Kokkos::parallel_reduce(
       "tlsph/kk:forces", Kokkos::RangePolicy<DeviceType>(0, nlocal),
-      KOKKOS_LAMBDA(const int i, EV_FLOAT &acc) {
-        const auto b = dc.template bonds<DIM>(i);
-        const double Vi = b.Vi;
-        double fs[3] = {fown[3 * i], fown[3 * i + 1], fown[3 * i + 2]};
-        double fv[3] = {0.0, 0.0, 0.0}, fh[3] = {0.0, 0.0, 0.0};
-        const TLSPH::VirialTally tally{acc.v};
-        TLSPH::particle_force_bonds<DIM, ORDER, HG, VISC, VIRIAL, 0>(
-            i, Vi, b, nb[i], x, v, pkr, type, pm, hh, bb, gg, P + 9 * i, fs, fv, fh, tally);
-        for (int d = 0; d < DIM; d++) f[3 * i + d] += fs[d] + fv[d] + fh[d];
-        for (int d = 0; d < 3; d++) {
-          fhg[3 * i + d] = (HG != 2) ? fh[d] : 0.0;
-          fvisc[3 * i + d] = fv[d];
-        }
-      },
-      ev);
-  if (VIRIAL)
-    for (int k = 0; k < 6; k++) vir[k] += ev.v[k];
+      KOKKOS_LAMBDA(const int i, EV_FLOAT &acc) { body(i, acc.v); }, ev);
+  for (int k = 0; k < 6; k++) vir[k] += ev.v[k];
 }
 
 template <class DeviceType, class Base>
@@ -1098,7 +1133,8 @@ void PairTLSPHKokkosT<DeviceType, Base>::report_copies(bigint nsteps)
       line += fmt::format("; layout: chunks of {} particles: the last cache {:.0f} records for "
                           "{:.0f} bonds on rank 0 = {:.1f} % padding", slice, layout_records,
                           layout_bonds,
-                          layout_records > 0.0 ? 100.0 * (1.0 - layout_bonds / layout_records) : 0.0);
+                          layout_records > 0.0 ? 100.0 * (1.0 - layout_bonds / layout_records) : 0.0) +
+          (pk_columns ? " (partner rows read as columns)" : "");
     if (env_flag("TLSPH_KK_CACHE_CHECK"))
       line += fmt::format(", the device builds checked against the host build: largest "
                           "relative difference {:.3g}", cache_check_worst);

@@ -96,6 +96,8 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   // the kernels (public: device lambdas may not live in private members)
   template <int DIM, int ORDER, int LAWS> int deformation_kernel();
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void force_kernel(double *vir);
+  template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, class Rows>
+  void force_gather(double *vir, const Rows &pkr);
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void force_kernel_scatter(double *vir);
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL> void force_pass(double *vir);
   template <int DIM, int ORDER> void dispatch_force(int hg, int visc, int vir, double *v);
@@ -169,6 +171,14 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
      still present). Default: 32 (a warp) on a GPU, 1 on a host backend;
      TLSPH_KK_SLICE=C sets it (the tests run the host backend with C > 1). */
   int slice = 1;
+  /* The gather form's partner rows (the packed rows, ghosts included) read
+     column by column: copied into d_pkc (value k of row j at k nall + j)
+     before the force kernel, so that a warp's threads, whose partners are
+     nearby particles, read nearby addresses (TLSPH::ColumnRows).
+     TLSPH_KK_PK_COLUMNS=1 switches it on (off by default until measured on a
+     GPU; the tests run it on the host backend). */
+  bool pk_columns = false;
+  dview d_pkc;
   double layout_records = 0.0, layout_bonds = 0.0;    // of the last cache on the device
   iview d_ncache, d_cbase;
   void set_slice();
