@@ -4,6 +4,8 @@
 ------------------------------------------------------------------------- */
 
 #include "pair_tlsph_damage.h"
+
+#include "tlsph_crack.h"
 #include "tlsph_input.h"
 
 #include "atom.h"
@@ -934,8 +936,8 @@ void PairTLSPHDamage::grow_tips()
   for (int a = 0; a < nt; a++) {
     CrackTip &tp = tips[a];
     if (!tp.alive) continue;
-    // du / sqrt(r) = c1 + c3 r (the r^1/2 and r^3/2 terms of the jump)
-    double sr = 0, sr2 = 0, syn = 0, syt = 0, srn = 0, srt = 0;
+    // the faces' jump at the samples, normal and tangential to the faces
+    double rr[NK], jn[NK], jt[NK];
     double fr[2] = {0.0, 0.0};    // the faces' mean direction: the frame of K_I, K_II
     int cnt = 0;
     for (int k = 0; k < NK; k++) {
@@ -946,32 +948,18 @@ void PairTLSPHDamage::grow_tips()
       const double tx = T[2 * q], ty = T[2 * q + 1];
       fr[0] += tx;
       fr[1] += ty;
-      const double yn = (-ty * dux + tx * duy) / sqrt(rk[k]);
-      const double yt = (tx * dux + ty * duy) / sqrt(rk[k]);
-      sr += rk[k];
-      sr2 += rk[k] * rk[k];
-      syn += yn;
-      syt += yt;
-      srn += rk[k] * yn;
-      srt += rk[k] * yt;
+      rr[cnt] = rk[k];
+      jn[cnt] = -ty * dux + tx * duy;
+      jt[cnt] = tx * dux + ty * duy;
       cnt++;
     }
     if (cnt == 0) continue;
-    double cn = syn / cnt, ct = syt / cnt;
-    if (cnt >= 2) {
-      const double det = cnt * sr2 - sr * sr;
-      cn = (sr2 * syn - sr * srn) / det;
-      ct = (sr2 * syt - sr * srt) / det;
-    }
-    const double f = tip_Eprime / 8.0 * sqrt(2.0 * M_PI);
-    const double KI = MAX(f * cn, 0.0);    // closed faces: no opening mode
-    const double KII = f * ct;
-    // maximum tangential stress: kink angle and equivalent K
-    double th = 0.0;
-    if (fabs(KII) > 1.0e-12 * (fabs(KI) + fabs(KII)))
-      th = 2.0 * atan((KI - sqrt(KI * KI + 8.0 * KII * KII)) / (4.0 * KII));
-    const double c2 = cos(0.5 * th);
-    const double Keq = c2 * (KI * c2 * c2 - 1.5 * KII * sin(th));
+    // K_I, K_II (displacement correlation), the kink angle and the
+    // equivalent K of the maximum tangential stress (tlsph_crack.h)
+    const TLSPH::CrackK K = TLSPH::displacement_correlation(cnt, rr, jn, jt, tip_Eprime);
+    const double KI = K.KI, KII = K.KII;
+    const double th = TLSPH::mts_kink_angle(KI, KII);
+    const double Keq = TLSPH::mts_equivalent_K(KI, KII, th);
     Gt[a] = (Keq > 0.0) ? Keq * Keq / tip_Eprime : 0.0;
     Kt[2 * a] = KI;
     Kt[2 * a + 1] = KII;

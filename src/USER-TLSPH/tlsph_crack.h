@@ -1,0 +1,79 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   USER-TLSPH: the LAMMPS-free crack-tip mechanics of crack-tip tracking
+   (pair_style tlsph/damage criterion tip; PairTLSPHDamage::grow_tips):
+   the stress intensity factors by displacement correlation and the
+   maximum-tangential-stress rule (Erdogan & Sih 1963). Plain C++, tested
+   without LAMMPS (unittest/physics/test_crack.cpp) against the Williams
+   near-tip fields.
+------------------------------------------------------------------------- */
+
+#ifndef TLSPH_CRACK_H
+#define TLSPH_CRACK_H
+
+#include <cmath>
+
+namespace TLSPH {
+
+/* K_I and K_II from the displacement jump across the crack faces at n
+   distances r[k] behind the tip: jn[k] the jump normal to the faces (the +
+   face, to the left of the path's direction, minus the - face), jt[k] the
+   tangential jump. Near the tip (Williams) the jump is
+   du(r) = 8 K / E' sqrt(r / 2 pi) + O(r^3/2), E' = E in plane stress and
+   E / (1 - nu^2) in plane strain: du / sqrt(r) = c1 + c3 r is fitted by
+   least squares (the mean of du / sqrt(r) for one sample) and
+   K = E' sqrt(2 pi) / 8 c1, the fit extrapolated to r = 0. Faces that
+   overlap (c1 < 0 normal) give K_I = 0: no opening mode. */
+struct CrackK {
+  double KI, KII;
+};
+inline CrackK displacement_correlation(int n, const double *r, const double *jn, const double *jt,
+                                       double Eprime)
+{
+  double sr = 0, sr2 = 0, syn = 0, syt = 0, srn = 0, srt = 0;
+  for (int k = 0; k < n; k++) {
+    const double yn = jn[k] / std::sqrt(r[k]);
+    const double yt = jt[k] / std::sqrt(r[k]);
+    sr += r[k];
+    sr2 += r[k] * r[k];
+    syn += yn;
+    syt += yt;
+    srn += r[k] * yn;
+    srt += r[k] * yt;
+  }
+  if (n == 0) return CrackK{0.0, 0.0};
+  double cn = syn / n, ct = syt / n;
+  if (n >= 2) {
+    const double det = n * sr2 - sr * sr;
+    cn = (sr2 * syn - sr * srn) / det;
+    ct = (sr2 * syt - sr * srt) / det;
+  }
+  const double f = Eprime / 8.0 * std::sqrt(2.0 * M_PI);
+  const double KI = f * cn;
+  return CrackK{KI > 0.0 ? KI : 0.0, f * ct};
+}
+
+/* The maximum-tangential-stress kink angle (Erdogan & Sih): the direction
+   theta, from the crack's line, where the hoop stress
+   sigma_tt ~ cos(theta/2) [K_I cos^2(theta/2) - 3/2 K_II sin(theta)] is
+   largest: d sigma_tt / d theta = 0 gives
+   theta = 2 atan((K_I - sqrt(K_I^2 + 8 K_II^2)) / (4 K_II));
+   0 for pure mode I, -/+70.53 deg for pure mode II with K_II >/< 0. */
+inline double mts_kink_angle(double KI, double KII)
+{
+  if (std::fabs(KII) > 1.0e-12 * (std::fabs(KI) + std::fabs(KII)))
+    return 2.0 * std::atan((KI - std::sqrt(KI * KI + 8.0 * KII * KII)) / (4.0 * KII));
+  return 0.0;
+}
+
+/* The equivalent mode-I factor of that direction: sigma_tt(theta) sqrt(2 pi r)
+   = cos(theta/2) [K_I cos^2(theta/2) - 3/2 K_II sin(theta)]; G = K_eq^2 / E'
+   is the energy release rate the tip compares with G_c. */
+inline double mts_equivalent_K(double KI, double KII, double theta)
+{
+  const double c2 = std::cos(0.5 * theta);
+  return c2 * (KI * c2 * c2 - 1.5 * KII * std::sin(theta));
+}
+
+}    // namespace TLSPH
+
+#endif

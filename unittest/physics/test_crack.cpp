@@ -1,0 +1,141 @@
+/* ----------------------------------------------------------------------
+   The crack-tip mechanics of crack-tip tracking (tlsph_crack.h) against
+   the Williams near-tip fields of linear elastic fracture mechanics,
+   written out here independently (Anderson, Fracture Mechanics, Table 2.1
+   and 2.2; Erdogan & Sih 1963):
+   - the kink angle of the maximum-tangential-stress rule against the
+     direction where the Williams hoop stress is largest, found by search,
+     for K_II / K_I from 0 to pure mode II, both signs;
+   - the equivalent K against the Williams hoop stress there;
+   - the displacement correlation against the crack faces' displacements
+     of the Williams field (plane strain and plane stress, with an r^3/2
+     term), which fixes the factor 8 / E' and the extrapolation to r = 0.
+------------------------------------------------------------------------- */
+
+#include "tlsph_crack.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace {
+
+const double PI = std::acos(-1.0);
+
+// Williams: sigma_theta_theta sqrt(2 pi r) at angle theta from the crack line
+double hoop(double KI, double KII, double th)
+{
+  return KI * (0.75 * std::cos(0.5 * th) + 0.25 * std::cos(1.5 * th)) -
+      KII * (0.75 * std::sin(0.5 * th) + 0.75 * std::sin(1.5 * th));
+}
+
+// the angle in (-pi, pi) of the largest hoop stress: a grid, then golden section
+double hoop_max_angle(double KI, double KII)
+{
+  const int n = 20000;
+  double best = -PI, bv = -1e300;
+  for (int k = 1; k < n; k++) {
+    const double th = -PI + 2.0 * PI * k / n;
+    const double v = hoop(KI, KII, th);
+    if (v > bv) bv = v, best = th;
+  }
+  double a = best - 2.0 * PI / n, b = best + 2.0 * PI / n;
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int it = 0; it < 200; it++) {
+    const double c = b - g * (b - a), d = a + g * (b - a);
+    if (hoop(KI, KII, c) > hoop(KI, KII, d)) b = d;
+    else a = c;
+  }
+  return 0.5 * (a + b);
+}
+
+// Williams displacements of modes I and II (kappa: 3 - 4 nu plane strain,
+// (3 - nu) / (1 + nu) plane stress), at (r, theta)
+void williams_u(double KI, double KII, double mu, double kappa, double r, double th, double *u)
+{
+  const double s = std::sqrt(r / (2.0 * PI)), c2 = std::cos(0.5 * th), s2 = std::sin(0.5 * th);
+  u[0] = KI / (2 * mu) * s * c2 * (kappa - 1 + 2 * s2 * s2) +
+      KII / (2 * mu) * s * s2 * (kappa + 1 + 2 * c2 * c2);
+  u[1] = KI / (2 * mu) * s * s2 * (kappa + 1 - 2 * c2 * c2) -
+      KII / (2 * mu) * s * c2 * (kappa - 1 - 2 * s2 * s2);
+}
+
+}    // namespace
+
+// the kink angle: the closed form against the hoop stress's maximum
+TEST(CrackTip, KinkAngleIsTheHoopStressMaximum)
+{
+  const double ratios[] = {0.0, 0.05, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0, 10.0, 100.0};
+  for (double q : ratios)
+    for (double sgn : {1.0, -1.0}) {
+      const double KI = 1.0, KII = sgn * q;
+      const double th = TLSPH::mts_kink_angle(KI, KII);
+      const double ref = hoop_max_angle(KI, KII);
+      EXPECT_NEAR(th, ref, 1e-7) << "K_II/K_I = " << KII;
+    }
+  // pure mode II: -+70.53 deg (arccos(1/3)), the textbook value
+  const double pure = TLSPH::mts_kink_angle(0.0, 1.0);
+  std::printf("[ info ] pure mode II kink %.4f deg (70.5288 expected)\n", pure * 180 / PI);
+  EXPECT_NEAR(pure, -std::acos(1.0 / 3.0), 1e-12);
+  EXPECT_NEAR(TLSPH::mts_kink_angle(0.0, -2.0), std::acos(1.0 / 3.0), 1e-12);
+  EXPECT_NEAR(pure, hoop_max_angle(0.0, 1.0), 1e-7);
+  EXPECT_EQ(TLSPH::mts_kink_angle(3.0, 0.0), 0.0);
+  // a mode II of the other sign turns the other way (the rule is odd in K_II)
+  EXPECT_NEAR(TLSPH::mts_kink_angle(1.0, 0.3), -TLSPH::mts_kink_angle(1.0, -0.3), 1e-15);
+}
+
+// the equivalent K: the Williams hoop stress at the kink angle
+TEST(CrackTip, EquivalentKIsTheHoopStressThere)
+{
+  for (double KII : {0.0, 0.2, -0.7, 1.0, 5.0})
+    for (double KI : {0.0, 0.5, 1.0}) {
+      if (KI == 0.0 && KII == 0.0) continue;
+      const double th = TLSPH::mts_kink_angle(KI, KII);
+      const double Keq = TLSPH::mts_equivalent_K(KI, KII, th);
+      EXPECT_NEAR(Keq, hoop(KI, KII, th), 1e-12 * (std::fabs(KI) + std::fabs(KII)));
+    }
+  // pure mode I: K_eq = K_I; pure mode II: K_eq = 2 / sqrt(3) K_II (K_IIc = sqrt(3)/2 K_Ic)
+  EXPECT_NEAR(TLSPH::mts_equivalent_K(2.0, 0.0, 0.0), 2.0, 1e-15);
+  const double th = TLSPH::mts_kink_angle(0.0, 1.0);
+  EXPECT_NEAR(TLSPH::mts_equivalent_K(0.0, 1.0, th), 2.0 / std::sqrt(3.0), 1e-12);
+}
+
+// the displacement correlation recovers K_I and K_II from the crack faces'
+// displacements of the Williams field, with a higher-order term added
+TEST(CrackTip, DisplacementCorrelationRecoversK)
+{
+  const double E = 32e9, nu = 0.2, mu = E / (2 * (1 + nu));
+  const double h = 1.33e-3;
+  for (int strain = 0; strain < 2; strain++) {
+    const double kappa = strain ? 3 - 4 * nu : (3 - nu) / (1 + nu);
+    const double Eprime = strain ? E / (1 - nu * nu) : E;
+    for (double KII : {0.0, 0.4e6, -0.9e6})
+      for (double KI : {0.0, 1.0e6, 2.5e6}) {
+        // samples at r = (1.5 + 0.5 k) h behind a tip at the origin on the
+        // crack line y = 0, x < 0 (path direction +x: the + face is y > 0)
+        const int n = 4;
+        double r[n], jn[n], jt[n];
+        for (int k = 0; k < n; k++) {
+          r[k] = (1.5 + 0.5 * k) * h;
+          double up[2], um[2];
+          williams_u(KI, KII, mu, kappa, r[k], PI, up);
+          williams_u(KI, KII, mu, kappa, r[k], -PI, um);
+          // an r^3/2 term of the jump, which the fit's c3 r takes out
+          const double a3 = 0.3 * (KI + std::fabs(KII)) / E * std::pow(r[k], 1.5) / h;
+          jn[k] = up[1] - um[1] + a3;
+          jt[k] = up[0] - um[0] - 0.5 * a3;
+        }
+        const TLSPH::CrackK K = TLSPH::displacement_correlation(n, r, jn, jt, Eprime);
+        EXPECT_NEAR(K.KI, KI, 1e-8 * 1e6) << "plane " << (strain ? "strain" : "stress");
+        EXPECT_NEAR(K.KII, KII, 1e-8 * 1e6) << "plane " << (strain ? "strain" : "stress");
+        // one sample: the mean, exact without the higher-order term
+        double j1n = jn[0] - 0.3 * (KI + std::fabs(KII)) / E * std::pow(r[0], 1.5) / h;
+        const TLSPH::CrackK K1 = TLSPH::displacement_correlation(1, r, &j1n, jt, Eprime);
+        EXPECT_NEAR(K1.KI, KI, 1e-8 * 1e6);
+      }
+  }
+  // closed faces (a negative opening) give no mode I
+  const double r1 = 1e-3, jn1 = -1e-6, jt1 = 0.0;
+  EXPECT_EQ(TLSPH::displacement_correlation(1, &r1, &jn1, &jt1, 1e9).KI, 0.0);
+}
