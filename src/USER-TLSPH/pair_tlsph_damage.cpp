@@ -909,22 +909,52 @@ void PairTLSPHDamage::grow_tips()
   std::vector<double> mine(nt * NK * 6, 0.0), sums(nt * NK * 6, 0.0);
   double **x = atom->x;
   const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++) {
-    const double *X = x0c[i];
-    for (int q = 0; q < nt * NK; q++) {
+  // The samples in square bins of side b >= rho (the radius of a sample's
+  // weight; at most 1024 bins a side): a particle visits only the samples of
+  // its own bin and the 8 around it, not every sample of every tip. Each
+  // sample's sums still run over the particles in their order: the same
+  // sums, bit for bit.
+  const int nq = nt * NK;
+  double blo[2] = {INFINITY, INFINITY}, bhi[2] = {-INFINITY, -INFINITY};
+  for (int q = 0; q < nq; q++)
+    if (ok[q])
+      for (int d = 0; d < 2; d++) blo[d] = MIN(blo[d], Q[2 * q + d]), bhi[d] = MAX(bhi[d], Q[2 * q + d]);
+  int nbx = 0, nby = 0;
+  double bs = rho;
+  std::vector<int> bhead, bnext(nq, -1);
+  if (blo[0] <= bhi[0]) {
+    bs = MAX(rho, MAX(bhi[0] - blo[0], bhi[1] - blo[1]) / 1024.0);
+    nbx = (int) ((bhi[0] - blo[0]) / bs) + 1;
+    nby = (int) ((bhi[1] - blo[1]) / bs) + 1;
+    bhead.assign((size_t) nbx * nby, -1);
+    for (int q = nq - 1; q >= 0; q--) {
       if (!ok[q]) continue;
-      const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
-      const double r2 = dx * dx + dy * dy;
-      if (r2 >= rho * rho) continue;
-      const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
-      // + side: to the left of the path (n = t rotated by +90 deg)
-      const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
-      if (dn == 0.0) continue;
-      double *S = mine.data() + 6 * q + (dn > 0.0 ? 0 : 3);
-      S[0] += w;
-      S[1] += w * (x[i][0] - X[0]);
-      S[2] += w * (x[i][1] - X[1]);
+      const int b = MIN(nbx - 1, (int) ((Q[2 * q] - blo[0]) / bs)) +
+          nbx * MIN(nby - 1, (int) ((Q[2 * q + 1] - blo[1]) / bs));
+      bnext[q] = bhead[b];
+      bhead[b] = q;
     }
+  }
+  for (int i = 0; nbx > 0 && i < nlocal; i++) {
+    const double *X = x0c[i];
+    const double fx = floor((X[0] - blo[0]) / bs), fy = floor((X[1] - blo[1]) / bs);
+    if (fx < -1.0 || fy < -1.0 || fx > nbx || fy > nby) continue;
+    const int ix = (int) fx, iy = (int) fy;
+    for (int cy = MAX(0, iy - 1); cy <= MIN(nby - 1, iy + 1); cy++)
+      for (int cx = MAX(0, ix - 1); cx <= MIN(nbx - 1, ix + 1); cx++)
+        for (int q = bhead[(size_t) cy * nbx + cx]; q >= 0; q = bnext[q]) {
+          const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
+          const double r2 = dx * dx + dy * dy;
+          if (r2 >= rho * rho) continue;
+          const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
+          // + side: to the left of the path (n = t rotated by +90 deg)
+          const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
+          if (dn == 0.0) continue;
+          double *S = mine.data() + 6 * q + (dn > 0.0 ? 0 : 3);
+          S[0] += w;
+          S[1] += w * (x[i][0] - X[0]);
+          S[2] += w * (x[i][1] - X[1]);
+        }
   }
   MPI_Allreduce(mine.data(), sums.data(), nt * NK * 6, MPI_DOUBLE, MPI_SUM, world);
 
