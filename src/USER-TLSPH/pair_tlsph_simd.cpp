@@ -91,37 +91,31 @@ using ForceFn = void (*)(const EllArrays &, const EllParticles &);
     if (h < (n)) CALL(1);                                                                    \
   }
 
-// the drivers: every chunk, in order (one copy per instruction set)
-#define TLSPH_ELL_DRIVERS(NS, ATTR, PIECES)                                                     \
+// every chunk, in order, its lanes in PIECES of vector widths, each piece a CALL
+#define TLSPH_ELL_CHUNKS(PIECES, CALL)                                                       \
+  for (int c = 0; c < e.nchunk; c++) {                                                       \
+    const int first = e.first[c], n = e.n[c];                                                \
+    if (e.kind[c] == EllArrays::PATTERN) {                                                   \
+      const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                       \
+      PIECES(n, CALL)                                                                        \
+    } else {                                                                                 \
+      const auto sl = TLSPH::lane_slots<DIM>(e, c);                                          \
+      PIECES(n, CALL)                                                                        \
+    }                                                                                        \
+  }
+// the drivers (one copy per instruction set)
+#define TLSPH_ELL_DRIVERS(NS, ATTR, PIECES)                                                  \
   namespace NS {                                                                             \
   template <int DIM, int ORDER>                                                              \
   ATTR void deformation(const EllArrays &e, const EllParticles &p, double *F,               \
                         TLSPH::EllStress *st)                                                \
   {                                                                                          \
-    for (int c = 0; c < e.nchunk; c++) {                                                     \
-      const int first = e.first[c], n = e.n[c];                                              \
-      if (e.kind[c] == EllArrays::PATTERN) {                                                 \
-        const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                     \
-        PIECES(n, ELL_D)                                                        \
-      } else {                                                                               \
-        const auto sl = TLSPH::lane_slots<DIM>(e, c);                                        \
-        PIECES(n, ELL_D)                                                        \
-      }                                                                                      \
-    }                                                                                        \
+    TLSPH_ELL_CHUNKS(PIECES, ELL_D)                                                          \
   }                                                                                          \
   template <int DIM, int ORDER, int HG, int VISC, int MULTI>                                 \
   ATTR void forces(const EllArrays &e, const EllParticles &p)                               \
   {                                                                                          \
-    for (int c = 0; c < e.nchunk; c++) {                                                     \
-      const int first = e.first[c], n = e.n[c];                                              \
-      if (e.kind[c] == EllArrays::PATTERN) {                                                 \
-        const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                     \
-        PIECES(n, ELL_F)                                                        \
-      } else {                                                                               \
-        const auto sl = TLSPH::lane_slots<DIM>(e, c);                                        \
-        PIECES(n, ELL_F)                                                        \
-      }                                                                                      \
-    }                                                                                        \
+    TLSPH_ELL_CHUNKS(PIECES, ELL_F)                                                          \
   }                                                                                          \
   }
 #define ELL_D(w) TLSPH::ell_deformation_stencil<DIM, ORDER, w>(sl, first, h, p, F, st)
