@@ -195,6 +195,40 @@ void PairTLSPHKokkosT<DeviceType, Base>::upload_bond_cache()
   after_cache_build(nb);
 }
 
+namespace {
+/* The sliced layout (pair_tlsph_kokkos.h) of particles with nc[i] bonds
+   each, in chunks of C: st[i] the record of i's bond 0, st[n] the records
+   in all (returned) */
+size_t slice_starts(const std::vector<int> &nc, int C, std::vector<int> &st)
+{
+  const int n = nc.size();
+  st.assign(n + 1, 0);
+  size_t total = 0;
+  for (int c0 = 0; c0 < n; c0 += C) {
+    int width = 0;
+    for (int i = c0; i < MIN(n, c0 + C); i++) {
+      width = MAX(width, nc[i]);
+      st[i] = (int) total + (i - c0);
+    }
+    total += (size_t) C * width;
+  }
+  st[n] = (int) total;
+  return total;
+}
+
+/* records of `per` values in the sliced layout -> rows: bond m of i from
+   record st[i] + m C to row rs[i] + m */
+template <class T>
+void records_to_rows(const T *rec, int per, const std::vector<int> &st, const std::vector<int> &nc,
+                     int C, const int *rs, T *rows)
+{
+  for (size_t i = 0; i < nc.size(); i++)
+    for (int m = 0; m < nc[i]; m++)
+      for (int d = 0; d < per; d++)
+        rows[((size_t) rs[i] + m) * per + d] = rec[((size_t) st[i] + (size_t) m * C) * per + d];
+}
+}    // namespace
+
 /* The host's rows of the bond cache (bond_start, nbond, nlead, lean: j, k
    and with_gw g, w) to the device in the sliced layout of `slice`
    particles per chunk (pair_tlsph_kokkos.h); returns the records in all.
@@ -203,19 +237,9 @@ template <class DeviceType, class Base>
 size_t PairTLSPHKokkosT<DeviceType, Base>::upload_rows(bool with_gw)
 {
   const int nlocal = atom->nlocal, C = slice;
-  std::vector<int> st(nlocal + 1), nc(nlocal);
-  size_t total = 0;
-  for (int c0 = 0; c0 < nlocal; c0 += C) {
-    const int c1 = MIN(nlocal, c0 + C);
-    int width = 0;
-    for (int i = c0; i < c1; i++) {
-      nc[i] = bond_start[i + 1] - bond_start[i];
-      width = MAX(width, nc[i]);
-      st[i] = (int) total + (i - c0);
-    }
-    total += (size_t) C * width;
-  }
-  st[nlocal] = (int) total;
+  std::vector<int> st, nc(nlocal);
+  for (int i = 0; i < nlocal; i++) nc[i] = bond_start[i + 1] - bond_start[i];
+  const size_t total = slice_starts(nc, C, st);
   layout_records = (double) total;
   layout_bonds = (double) bond_start[nlocal];
   upload(d_start, st.data(), nlocal + 1, "tlsph/kk:bond_start");
@@ -613,31 +637,20 @@ void PairTLSPHKokkosT<DeviceType, Base>::check_device_cache()
   download(gs.data(), d_bg, 0, gs.size());
   download(ws.data(), d_bw, 0, ws.size());
   download(q.data(), d_Q, 0, q.size());
-  // the device's cache as rows (the host build's layout): bond m of i at
-  // record st[i] + m C; the layout itself must be the documented one
-  bool layout = true;
+  // the layout itself must be the documented one; then the device's cache
+  // as rows (the host build's layout)
+  std::vector<int> expect;
+  slice_starts(nc, C, expect);
+  const bool layout = (expect == st);
   std::vector<int> rs(nlocal + 1, 0);
-  for (int c0 = 0, base = 0; c0 < nlocal; c0 += C) {
-    int width = 0;
-    for (int i = c0; i < MIN(nlocal, c0 + C); i++) {
-      layout = layout && st[i] == base + (i - c0);
-      width = MAX(width, nc[i]);
-    }
-    base += C * width;
-    if (c0 + C >= nlocal) layout = layout && (size_t) base == nrec;
-  }
   for (int i = 0; i < nlocal; i++) rs[i + 1] = rs[i] + nc[i];
   const size_t nb = rs[nlocal];
   std::vector<double> g(nb * dim), w(nb * 2);
   std::vector<int> bj(nb), bk(nb);
-  for (int i = 0; i < nlocal; i++)
-    for (int m = 0; m < nc[i]; m++) {
-      const size_t r = (size_t) st[i] + (size_t) m * C, h = (size_t) rs[i] + m;
-      bj[h] = bjs[r];
-      bk[h] = bks[r];
-      for (int d = 0; d < dim; d++) g[h * dim + d] = gs[r * dim + d];
-      for (int d = 0; d < 2; d++) w[h * 2 + d] = ws[r * 2 + d];
-    }
+  records_to_rows(bjs.data(), 1, st, nc, C, rs.data(), bj.data());
+  records_to_rows(bks.data(), 1, st, nc, C, rs.data(), bk.data());
+  records_to_rows(gs.data(), dim, st, nc, C, rs.data(), g.data());
+  records_to_rows(ws.data(), 2, st, nc, C, rs.data(), w.data());
   download(sg.data(), d_sumg, 0, sg.size());
   const bool has_frozen = this->correction_from_all_partners && this->bonds->nfrozen;
   std::vector<double> fz;
@@ -1269,10 +1282,8 @@ void PairTLSPHKokkosT<DeviceType, Base>::sync_host()
     download(nbond, d_nbond, 0, nlocal);
     download(nlead, d_nlead, 0, nlocal);
     bond_start[0] = 0;
-    for (int i = 0; i < nlocal; i++) {
-      bond_start[i + 1] = bond_start[i] + nc[i];
-      for (int m = 0; m < nc[i]; m++) lean.j[bond_start[i] + m] = js[(size_t) st[i] + (size_t) m * slice];
-    }
+    for (int i = 0; i < nlocal; i++) bond_start[i + 1] = bond_start[i] + nc[i];
+    records_to_rows(js.data(), 1, st, nc, slice, bond_start, lean.j);
   }
   host_current = 1;
   host_step = update->ntimestep;
