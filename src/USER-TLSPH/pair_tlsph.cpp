@@ -99,6 +99,8 @@ PairTLSPH::~PairTLSPH()
   memory->destroy(ell.pat_v);
   memory->destroy(ell_perm);
   memory->destroy(ell_inv);
+  memory->destroy(ell_chunk_of);
+  memory->destroy(ell.width);
   memory->destroy(ell_soa);
 }
 
@@ -596,6 +598,7 @@ void PairTLSPH::init_style()
   // (newton_pair off, or the SIMD step), which alone reads it
   select_simd();
   ell_version = -1;
+  ell_nrefill = ell_nrelaid = 0;
   ell_nperm = 0;    // the columns' size follows the packed rows
   report_simd = 1;
   /* the SIMD step keeps the local particles sorted by reference position
@@ -1290,16 +1293,18 @@ void PairTLSPH::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   refresh_bond_cache();
-  // the SIMD step (pair_tlsph_simd.cpp) reads the bond cache in its own layout
-  const bool simd = simd_isa != SIMD_NO;
-  if (simd && ell_version != cache_version) build_ell();
 
   // (1) F and stress; tlsph/damage applies its pre-cracks first, breaks bonds
   // inside the pass and then updates the damage and alpha_i (hooks, no-ops here)
   update_bonds();
-  if (simd) simd_deformation_pass();
+  // the SIMD step (pair_tlsph_simd.cpp) reads the bond cache in its own layout
+  const bool simd = simd_isa != SIMD_NO;
+  if (simd && ell_version != cache_version) build_ell();
+  const bool simd_pass1 = simd && simd_deformation_capable();
+  if (simd_pass1) simd_deformation_pass();
   else deformation_pass();
   after_deformation();
+  if (simd && !simd_pass1) simd_columns_from_rows();
 
   comm->forward_comm_pair(this);
 
@@ -1481,10 +1486,10 @@ double PairTLSPH::memory_usage()
   bytes += (double) ncache_max * (2 * sizeof(int) + (dim + 2) * sizeof(double));
   bytes += (double) nstart_max * sizeof(int);
   // the SIMD step's layout: per slot and lane a partner and dim + 3 doubles
-  bytes += (double) ell_nstart * 5 * sizeof(int);
+  bytes += (double) ell_nstart * 6 * sizeof(int);
   if (ell.npat) bytes += (double) ell.pat_start[ell.npat] * (sizeof(int) + (dim + 3) * sizeof(double));
   bytes += (double) ell_nblock_max * TLSPH::ELL_C * (sizeof(int) + (dim + 3) * sizeof(double));
-  bytes += (double) ell_nperm * (2 * sizeof(int) + ell_ncolumns() * sizeof(double));
+  bytes += (double) ell_nperm * (3 * sizeof(int) + ell_ncolumns() * sizeof(double));
   return bytes;
 }
 

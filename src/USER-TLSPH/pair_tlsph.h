@@ -113,6 +113,12 @@ class PairTLSPH : public Pair {
     }
     *npat = simd_isa ? ell.npat : 0;
   }
+  // tlsph/damage: lanes re-filled and pattern chunks given blocks of their own since init
+  void simd_refills(bigint *lanes, bigint *relaid) const
+  {
+    *lanes = ell_nrefill;
+    *relaid = ell_nrelaid;
+  }
   void sort_particles();    // the SIMD step's order of the local particles (its bond fix calls it)
 
   /* the per-particle part of pass (1) for material m (TLSPH::particle_stress_row
@@ -277,7 +283,22 @@ class PairTLSPH : public Pair {
   int *ell_inv = nullptr;       // LAMMPS index -> the step's order
   double *ell_soa = nullptr;    // columns (length ell_nperm): x, v, x0c, packed rows
   int ell_nperm = 0;
+  int *ell_chunk_of = nullptr;  // the step's order (local particles) -> its chunk
+  bigint ell_nblock = 0;        // slot blocks in use
+  std::vector<int> ell_dirty;   // local particles whose bonds changed since build_ell
+  bigint ell_nrefill = 0, ell_nrelaid = 0;    // (simd_refills)
   int report_simd = 1;             // 1: log the layout at the next build_ell
+  // tlsph/damage: particle i's bonds changed (its lane is re-filled before the force pass)
+  void ell_mark(int i)
+  {
+    if (simd_isa != SIMD_NO) ell_dirty.push_back(i);
+  }
+  void ell_fill_lane(int c, int l);
+  void ell_apply_dirty();
+  // false: the style's own deformation pass (tlsph/damage: its bonds break
+  // there), then the SIMD force pass from its rows (simd_columns_from_rows)
+  virtual bool simd_deformation_capable() const { return true; }
+  void simd_columns_from_rows();
   void ell_columns_xv();
   void ell_columns_pk(int k0, int k1);
   TLSPH::EllParticles ell_particles();

@@ -577,6 +577,7 @@ void PairTLSPHDamage::deform_and_break()
       for (int cc = 0; cc < DIM; cc++) Fi[3 * r + cc] += Fa[DIM * r + cc];
     if (changed) {
       nbond[i] = n;
+      ell_mark(i);
       if (rebuild) {
         // the corrected gradients changed: F again from the rebuilt ones
         recorrect(i);
@@ -855,6 +856,7 @@ void PairTLSPHDamage::cut_path(const double *A, const double *B)
     }
     if (changed) {
       nbond[i] = n;
+      ell_mark(i);
       if (rebuild) recorrect(i);
     }
   }

@@ -31,8 +31,9 @@ class PairTLSPHDamage : public PairTLSPH {
   ~PairTLSPHDamage() override;
   void settings(int, char **) override;
   void init_style() override;
-  // its bonds break inside the deformation pass: the scalar step only
-  bool simd_capable() const override { return false; }
+  // its bonds break inside its own deformation pass (scalar); the SIMD step's
+  // force pass then reads the layout with the broken bonds' slots zeroed
+  bool simd_deformation_capable() const override { return false; }
   double init_one(int, int) override;
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;

@@ -256,8 +256,10 @@ void PairTLSPH::build_ell()
     ell_nperm = nall + nall / 8 + C;
     memory->destroy(ell_perm);
     memory->destroy(ell_inv);
+    memory->destroy(ell_chunk_of);
     memory->create(ell_perm, ell_nperm, "tlsph:ell_perm");
     memory->create(ell_inv, ell_nperm, "tlsph:ell_inv");
+    memory->create(ell_chunk_of, ell_nperm, "tlsph:ell_chunk_of");
     // columns: x, v, x0c (dim each) and the packed rows
     memory->destroy(ell_soa);
     memory->create(ell_soa, (bigint) ell_nperm * ell_ncolumns(), "tlsph:ell_soa");
@@ -336,7 +338,7 @@ void PairTLSPH::build_ell()
   const int nchunk = (int) cfirst.size();
   if (nchunk + 1 > ell_nstart) {
     ell_nstart = nchunk + 1 + nchunk / 8 + 8;
-    for (int **a : {&ell.start, &ell.first, &ell.n, &ell.kind, &ell.pat}) {
+    for (int **a : {&ell.start, &ell.width, &ell.first, &ell.n, &ell.kind, &ell.pat}) {
       memory->destroy(*a);
       memory->create(*a, ell_nstart, "tlsph:ell_chunks");
     }
@@ -344,6 +346,8 @@ void PairTLSPH::build_ell()
   ell.nchunk = nchunk;
   std::copy(cfirst.begin(), cfirst.end(), ell.first);
   std::copy(cn.begin(), cn.end(), ell.n);
+  for (int c = 0; c < nchunk; c++)
+    for (int l = 0; l < cn[c]; l++) ell_chunk_of[cfirst[c] + l] = c;
 
   // chunk c's blocks into sj (C per slot) and sv (nv C per slot); its width
   std::vector<int> sj;
@@ -459,17 +463,21 @@ void PairTLSPH::build_ell()
     memory->create(ell.v, ell_nblock_max * C * nv, "tlsph:ell_v");
   }
   // pass 2: the blocks of the chunks that are not patterns
-  ell.start[0] = 0;
+  int b = 0;
   for (int c = 0; c < nchunk; c++) {
     int w = 0;
+    ell.start[c] = b;
     if (ell.kind[c] != EllArrays::PATTERN) {
       w = fill(c);
-      std::copy(sj.begin(), sj.end(), ell.j + (bigint) C * ell.start[c]);
-      std::copy(sv.begin(), sv.end(), ell.v + (bigint) nv * C * ell.start[c]);
+      std::copy(sj.begin(), sj.end(), ell.j + (bigint) C * b);
+      std::copy(sv.begin(), sv.end(), ell.v + (bigint) nv * C * b);
     }
-    ell.start[c + 1] = ell.start[c] + w;
+    ell.width[c] = w;
+    b += w;
   }
+  ell_nblock = b;
   ell_version = cache_version;
+  ell_dirty.clear();    // the layout is the bond cache's as it is now
   if (report_simd) {
     // once per run: how the particles were laid out (rank sums)
     report_simd = 0;
@@ -487,6 +495,77 @@ void PairTLSPH::build_ell()
                      simd_name(simd_isa), C, all[0] + all[1], all[3], all[1], all[4], all[0],
                      all[2]);
   }
+}
+
+/* Lane l of chunk c from the bond cache as it is now (tlsph/damage, after
+   bonds of its particle broke): every slot zero, then the values of each
+   intact bond in the slot of its partner offset, as build_ell fills them;
+   a broken bond's slot then adds exactly zero, like a padded one. */
+void PairTLSPH::ell_fill_lane(int c, int l)
+{
+  constexpr int C = TLSPH::ELL_C;
+  const int nv = dim + 3;
+  const int first = ell.first[c], k = first + l, i = ell_perm[k], w = ell.width[c];
+  const int *jb = ell.j + (bigint) C * ell.start[c];
+  double *vb = ell.v + (bigint) nv * C * ell.start[c];
+  for (int m = 0; m < w; m++)
+    for (int q = 0; q < nv; q++) vb[(bigint) nv * C * m + C * q + l] = 0.0;
+  const int s = bond_start[i];
+  for (int mm = 0; mm < nbond[i]; mm++) {
+    // the slots are sorted by partner offset (lane 0's partner minus first)
+    const int off = ell_inv[lean.j[s + mm]] - k;
+    int lo = 0, hi = w;
+    while (lo < hi) {
+      const int mid = (lo + hi) / 2;
+      if (jb[(bigint) C * mid] - first < off) lo = mid + 1;
+      else hi = mid;
+    }
+    if (lo == w || jb[(bigint) C * lo] - first != off)
+      error->one(FLERR, "pair {}: internal error: a bond of atom {} has no slot in the SIMD "
+                        "step's layout", force->pair_style, atom->tag[i]);
+    double *vm = vb + (bigint) nv * C * lo;
+    const bigint e = s + mm;
+    for (int d = 0; d < dim; d++) vm[C * d + l] = lean.g[dim * e + d];
+    vm[C * dim + l] = lean.w[2 * e];
+    vm[C * (dim + 1) + l] = lean.w[2 * e + 1];
+    vm[C * (dim + 2) + l] =
+        (dim == 2) ? bonds_of<2>(i).reverse_weight(mm) : bonds_of<3>(i).reverse_weight(mm);
+  }
+}
+
+/* The layout after the bonds of local particles changed since build_ell
+   (ell_dirty: tlsph/damage's breaks and cuts): each such particle's lane
+   re-filled; a pattern chunk first gets blocks of its own, behind the
+   others, with its pattern's slots (its other lanes filled from their own
+   bonds, as build_ell fills a stencil chunk). */
+void PairTLSPH::ell_apply_dirty()
+{
+  constexpr int C = TLSPH::ELL_C;
+  const int nv = dim + 3;
+  for (int i : ell_dirty) {
+    const int k = ell_inv[i], c = ell_chunk_of[k];
+    if (ell.kind[c] == EllArrays::PATTERN) {
+      const int q = ell.pat[c], m0 = ell.pat_start[q], w = ell.pat_start[q + 1] - m0;
+      if (ell_nblock + w > ell_nblock_max) {
+        ell_nblock_max = ell_nblock + w + ell_nblock / 8 + 16;
+        memory->grow(ell.j, ell_nblock_max * C, "tlsph:ell_j");
+        memory->grow(ell.v, ell_nblock_max * C * nv, "tlsph:ell_v");
+      }
+      int *jb = ell.j + (bigint) C * ell_nblock;
+      for (int m = 0; m < w; m++)
+        for (int l = 0; l < C; l++) jb[(bigint) C * m + l] = ell.first[c] + l + ell.pat_off[m0 + m];
+      ell.kind[c] = EllArrays::STENCIL;
+      ell.start[c] = (int) ell_nblock;
+      ell.width[c] = w;
+      ell_nblock += w;
+      for (int l = 0; l < ell.n[c]; l++) ell_fill_lane(c, l);
+      ell_nrelaid++;
+    } else {
+      ell_fill_lane(c, k - ell.first[c]);
+    }
+    ell_nrefill++;
+  }
+  ell_dirty.clear();
 }
 
 /* The local particles in the SIMD step's order: sorted by their reference
@@ -654,6 +733,23 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
     const double *row = pk[i];
     for (int q = 0; q < np; q++) pks[(bigint) q * ns + k] = row[q];
     for (int d = 0; d < DIM; d++) fcol[(bigint) d * ns + k] = fown[i][d];
+  }
+}
+
+/* after a style's own pass (1) (simd_deformation_capable false: tlsph/damage)
+   and its after_deformation: the layout of the bonds as they are now, and
+   the columns of the force pass from the local particles' rows (x, v, the
+   packed rows with this step's alpha_i, V_i P_i s_i) */
+void PairTLSPH::simd_columns_from_rows()
+{
+  if (!ell_dirty.empty()) ell_apply_dirty();
+  const int nlocal = atom->nlocal, ns = ell_nperm;
+  ell_columns_xv();
+  ell_columns_pk(0, nlocal);
+  double *fcol = ell_particles().fcol;
+  for (int k = 0; k < nlocal; k++) {
+    const double *fo = fown[ell_perm[k]];
+    for (int d = 0; d < dim; d++) fcol[(bigint) d * ns + k] = fo[d];
   }
 }
 

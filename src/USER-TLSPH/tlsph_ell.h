@@ -12,8 +12,10 @@
    reads partner j0(m) + l, so that every quantity of a slot is one
    contiguous vector load (no gathers). A particle whose neighbourhood no
    neighbour shares is a chunk of one.
-   Layout: chunk c (lanes first[c] .. first[c] + n[c] - 1, w_c slots) has
-   blocks start[c] <= b < start[c + 1], block b holding slot m = b - start[c]:
+   Layout: chunk c (lanes first[c] .. first[c] + n[c] - 1, w_c = width[c]
+   slots) has blocks start[c] <= b < start[c] + w_c, block b holding slot
+   m = b - start[c] (in chunk order, except the chunks that tlsph/damage
+   re-lays behind the others when a bond of theirs breaks):
      j[C b]                     partner of lane 0
      v[NV C b + C k + l]        k = 0..DIM-1: corrected gradient g_ij (k-th
                                 component); DIM: wv, DIM + 1: whg (the
@@ -55,7 +57,8 @@ struct EllArrays {
   int nchunk = 0;
   int *first = nullptr;    // per chunk: its first particle (the step's order)
   int *n = nullptr;        // per chunk: its particles (1 .. C)
-  int *start = nullptr;    // nchunk + 1 slot-block offsets
+  int *start = nullptr;    // per chunk: its first slot block
+  int *width = nullptr;    // per chunk: its slots (blocks; a PATTERN chunk: its pattern's)
   int *j = nullptr;        // C per block (lane 0's partner first)
   double *v = nullptr;     // NV C per block
   int *kind = nullptr;     // per chunk: STENCIL (its blocks) or PATTERN

@@ -74,7 +74,7 @@ template <int DIM> TLSPH_FORCE_INLINE LaneSlots<DIM> lane_slots(const EllArrays 
 {
   const long b0 = e.start[c];
   return LaneSlots<DIM>{e.j + ELL_C * b0, e.v + (long) EllShape<DIM>::NV * ELL_C * b0,
-                        e.start[c + 1] - e.start[c]};
+                        e.width[c]};
 }
 template <int DIM> TLSPH_FORCE_INLINE PatternSlots<DIM> pattern_slots(const EllArrays &e, int c)
 {

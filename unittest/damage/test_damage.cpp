@@ -40,6 +40,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -1454,6 +1455,192 @@ fix pb bot move linear 0 0.5 NULL units box
   EXPECT_EQ(healed, 0) << "a broken bond healed under compression";
   EXPECT_EQ(shrunk, 0);
   delete lmp;
+}
+
+/* ----------------------------------------------------------------------
+   12. the SIMD step of tlsph/damage (doc/pair_tlsph_damage.rst, "SIMD"):
+   the bonds break in the scalar deformation pass, the force pass runs on
+   the sliced-ELLPACK layout whose lanes are re-filled when a bond of
+   theirs breaks (a pattern chunk gets blocks of its own). Against the
+   scalar step ('simd no'): the same broken bonds, atom by atom, and the
+   trajectory to round-off. The yardstick of round-off is measured in the
+   same test: the scalar step with newton off (the gather form) against
+   newton on (the scatter form) differs by the order of its sums only; the
+   SIMD step may differ from the scalar one by at most ten times that.
+------------------------------------------------------------------------- */
+
+namespace {
+
+struct SimdRun {
+  std::map<long, std::array<double, 7>> atoms;    // x (3), v (3), intact bonds
+  int simd = 0;
+  int pattern_particles0 = 0;    // before the run
+  long refills = 0, relaid = 0;  // lanes re-filled, pattern chunks re-laid
+  double broken = 0.0;                                   // intact bond ends lost
+};
+
+// script(word): the deck with 'simd word' in its pair_style line
+SimdRun simd_run(const std::function<std::string(const std::string &)> &script,
+                 const std::string &word, bool newton, int nsteps)
+{
+  LAMMPS *lmp = open_lammps();
+  run_script(lmp, std::string(newton ? "newton on\n" : "newton off\n") + script(word));
+  SimdRun r;
+  auto *pair = damage_pair(lmp);
+  EXPECT_NE(pair, nullptr);
+  if (!pair) return r;
+  int kinds[3], npat;
+  r.simd = pair->simd_in_use();
+  pair->simd_chunks(kinds, &npat);
+  r.pattern_particles0 = kinds[1];
+  const double intact0 = total_intact(damage_columns(lmp));
+  lmp->input->one(("run " + std::to_string(nsteps) + " post no").c_str());
+  LAMMPS_NS::bigint refills, relaid;
+  pair->simd_refills(&refills, &relaid);
+  r.refills = refills, r.relaid = relaid;
+  const Columns cols = damage_columns(lmp);
+  r.broken = intact0 - total_intact(cols);
+  Atom *atom = lmp->atom;
+  for (int i = 0; i < atom->nlocal; i++) {
+    auto &a = r.atoms[atom->tag[i]];
+    for (int d = 0; d < 3; d++) a[d] = atom->x[i][d], a[3 + d] = atom->v[i][d];
+    a[6] = cols.at(atom->tag[i])[2];
+  }
+  delete lmp;
+  return r;
+}
+
+// largest difference of positions and of velocities, each relative to the
+// largest velocity times the run's time (positions) or the largest velocity
+std::array<double, 2> trajectory_difference(const SimdRun &a, const SimdRun &b)
+{
+  double vmax = 0.0, dx = 0.0, dv = 0.0;
+  for (const auto &kv : a.atoms)
+    for (int d = 3; d < 6; d++) vmax = std::max(vmax, std::fabs(kv.second[d]));
+  for (const auto &kv : a.atoms) {
+    const auto &p = kv.second, &q = b.atoms.at(kv.first);
+    for (int d = 0; d < 3; d++) dx = std::max(dx, std::fabs(p[d] - q[d]));
+    for (int d = 3; d < 6; d++) dv = std::max(dv, std::fabs(p[d] - q[d]));
+  }
+  return {dx, dv / vmax};
+}
+
+void simd_damage_test(const std::function<std::string(const std::string &)> &script, int nsteps,
+                      double length)
+{
+  const SimdRun ref = simd_run(script, "no", true, nsteps);
+  const SimdRun gather = simd_run(script, "no", false, nsteps);
+  ASSERT_EQ(ref.simd, LAMMPS_NS::PairTLSPH::SIMD_NO);
+  EXPECT_GT(ref.broken, 50) << "too few bonds broke: the test would be vacuous";
+  auto yard = trajectory_difference(ref, gather);
+  yard[0] /= length;
+  printf("scalar step, newton on vs off (the yardstick): |dx|/L %.3g, |dv|/vmax %.3g; %g bond "
+         "ends broke\n", yard[0], yard[1], ref.broken);
+  for (const auto &kv : ref.atoms)
+    ASSERT_EQ(kv.second[6], gather.atoms.at(kv.first)[6]) << "atom " << kv.first;
+  for (int isa : {LAMMPS_NS::PairTLSPH::SIMD_PORTABLE, LAMMPS_NS::PairTLSPH::SIMD_AVX2,
+                  LAMMPS_NS::PairTLSPH::SIMD_AVX512}) {
+    if (!LAMMPS_NS::PairTLSPH::simd_supported(isa)) continue;
+    const SimdRun r = simd_run(script, LAMMPS_NS::PairTLSPH::simd_name(isa), true, nsteps);
+    EXPECT_EQ(r.simd, isa);
+    auto diff = trajectory_difference(ref, r);
+    diff[0] /= length;
+    printf("simd %s: |dx|/L %.3g, |dv|/vmax %.3g; %d particles in pattern chunks at the start; "
+           "%ld lanes re-filled, %ld pattern chunks re-laid\n", LAMMPS_NS::PairTLSPH::simd_name(isa),
+           diff[0], diff[1], r.pattern_particles0, r.refills, r.relaid);
+    EXPECT_GT(r.pattern_particles0, 0) << "no pattern chunks: their re-laying is not exercised";
+    EXPECT_GT(r.relaid, 0) << "no pattern chunk was re-laid";
+    EXPECT_GT(r.refills, r.relaid) << "no lane of a stencil chunk was re-filled";
+    int differ = 0;
+    for (const auto &kv : ref.atoms)
+      if (kv.second[6] != r.atoms.at(kv.first)[6]) differ++;
+    EXPECT_EQ(differ, 0) << "atoms whose intact bonds differ from the scalar step's";
+    for (int k = 0; k < 2; k++)
+      EXPECT_LE(diff[k], std::max(1e-13, 10.0 * yard[k])) << (k ? "velocities" : "positions");
+  }
+}
+
+std::string tip_plate(const std::string &word)
+{
+  return R"(units si
+dimension 2
+boundary s s p
+atom_style peri
+atom_modify map array
+lattice sq 0.001 origin 0.5 0.5 0.0
+region box block 0 40 0 20 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+set type 1 volume 1e-6
+set type 1 mass 2.45e-3
+pair_style tlsph/damage h 0.00133 alpha 0.03 alpha_d 0.4 gamma 1.0 criterion tip precrack -0.001 0.010 0.015 0.010 simd )" +
+      word + R"(
+pair_coeff 1 1 E 32e9 nu 0.2 rho 2450 Gc 3
+region topr block INF INF 19 INF INF INF
+region botr block INF INF INF 1 INF INF
+group top region topr
+group bot region botr
+group mid subtract all top bot
+fix pt top move linear 0 0.5 NULL units box
+fix pb bot move linear 0 -0.5 NULL units box
+fix nve mid nve
+timestep 5e-8
+compute dmg all tlsph/damage/atom
+thermo 1000
+run 0
+)";
+}
+
+std::string split_block_3d(const std::string &word)
+{
+  return R"(units si
+dimension 3
+boundary s s s
+atom_style peri
+atom_modify map array
+lattice sc 0.001 origin 0.5 0.5 0.5
+region box block 0 14 0 10 0 8
+create_box 1 box
+create_atoms 1 box
+set type 1 volume 1e-9
+set type 1 mass 7.8e-6
+pair_style tlsph/damage h 0.00133 alpha 0.5 alpha_d 2.0 gamma 1.0 simd )" +
+      word + R"(
+pair_coeff 1 1 E 210e9 nu 0.3 rho 7800 sc 0.004
+variable vx atom 7.0+2.0*sin(x/0.003)
+variable vy atom 3.0+40.0*(y-0.005)/abs(y-0.005)
+velocity all set v_vx v_vy 0 units box
+fix 1 all nve
+compute dmg all tlsph/damage/atom
+timestep 5e-8
+thermo 1000
+run 0
+)";
+}
+
+}    // namespace
+
+TEST(SimdStep, same_bonds_break_as_scalar_rebuild)
+{
+  simd_damage_test([](const std::string &w) { return free_plate("correction rebuild simd " + w); },
+                   300, 0.03);
+}
+
+TEST(SimdStep, same_bonds_break_as_scalar_setup_absolute)
+{
+  simd_damage_test(
+      [](const std::string &w) { return free_plate("correction setup criterion absolute simd " + w); }, 300,
+      0.03);
+}
+
+TEST(SimdStep, same_bonds_break_as_scalar_tip)
+{
+  simd_damage_test(tip_plate, 400, 0.04);
+}
+
+TEST(SimdStep, same_bonds_break_as_scalar_3d)
+{
+  simd_damage_test(split_block_3d, 200, 0.014);
 }
 
 /* ---------------------------------------------------------------------- */
