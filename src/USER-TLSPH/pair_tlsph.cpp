@@ -1300,11 +1300,10 @@ void PairTLSPH::compute(int eflag, int vflag)
   // the SIMD step (pair_tlsph_simd.cpp) reads the bond cache in its own layout
   const bool simd = simd_isa != SIMD_NO;
   if (simd && ell_version != cache_version) build_ell();
-  const bool simd_pass1 = simd && simd_deformation_capable();
-  if (simd_pass1) simd_deformation_pass();
+  if (simd) simd_deformation_pass();
   else deformation_pass();
   after_deformation();
-  if (simd && !simd_pass1) simd_columns_from_rows();
+  if (simd) simd_after_deformation();
 
   comm->forward_comm_pair(this);
 

@@ -295,10 +295,18 @@ class PairTLSPH : public Pair {
   }
   void ell_fill_lane(int c, int l);
   void ell_apply_dirty();
-  // false: the style's own deformation pass (tlsph/damage: its bonds break
-  // there), then the SIMD force pass from its rows (simd_columns_from_rows)
-  virtual bool simd_deformation_capable() const { return true; }
-  void simd_columns_from_rows();
+  /* tlsph/damage: the SIMD step's pass (1) flags the local particles with a
+     bond whose squared length ratio r^2/r0^2 reaches up (or, down > 0, falls
+     to down); false: no screen */
+  virtual bool simd_screen(double &, double &) const { return false; }
+  // the flagged particles: the style's exact test, and pass (1) again for them
+  virtual void simd_breaks(const int *, int) {}
+  // true: after_deformation writes alpha_i into the packed rows (the SIMD
+  // step's stress lanes then run, and copy that column afterwards)
+  virtual bool alpha_after_deformation() const { return false; }
+  std::vector<int> ell_flagged;    // the screen's particles (LAMMPS indices)
+  void ell_row_to_columns(int i);
+  void simd_after_deformation();
   void ell_columns_xv();
   void ell_columns_pk(int k0, int k1);
   TLSPH::EllParticles ell_particles();

@@ -522,7 +522,7 @@ void PairTLSPHDamage::recorrect(int i)
    current at this point), so both drop it. One pass over the bond cache
    instead of a breaking pass and a deformation pass. */
 template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS>
-void PairTLSPHDamage::deform_and_break()
+void PairTLSPHDamage::deform_and_break(const int *list, int nlist)
 {
   double **x = atom->x;
   int *type = atom->type;
@@ -534,7 +534,9 @@ void PairTLSPHDamage::deform_and_break()
   const double down0 = stretch_down[ntp + 1] * (1.0 + 1.0e-10);
   const bool need_K = viscosity_active();
   double **x0 = x0c;
-  for (int i = 0; i < nlocal; i++) {
+  const int nloop = list ? nlist : nlocal;
+  for (int ii = 0; ii < nloop; ii++) {
+    const int i = list ? list[ii] : ii;
     const int s = bond_start[i];
     int *bj = lean.j + s;
     double *bg = lean.g + (bigint) DIM * s;
@@ -592,39 +594,77 @@ void PairTLSPHDamage::deform_and_break()
   }
 }
 
-template <int DIM, int ORDER, int LAWS> void PairTLSPHDamage::dispatch_break()
+template <int DIM, int ORDER, int LAWS>
+void PairTLSPHDamage::dispatch_break(const int *list, int nlist)
 {
   // one limit for all type pairs unless the types' critical stretches differ
   bool pairs = false;
   for (int t = 2; t <= atom->ntypes; t++) pairs = pairs || (sc[t] != sc[1]);
   if (absolute) {
-    if (pairs) deform_and_break<DIM, ORDER, LAWS, 1, 1>();
-    else deform_and_break<DIM, ORDER, LAWS, 1, 0>();
+    if (pairs) deform_and_break<DIM, ORDER, LAWS, 1, 1>(list, nlist);
+    else deform_and_break<DIM, ORDER, LAWS, 1, 0>(list, nlist);
   } else {
-    if (pairs) deform_and_break<DIM, ORDER, LAWS, 0, 1>();
-    else deform_and_break<DIM, ORDER, LAWS, 0, 0>();
+    if (pairs) deform_and_break<DIM, ORDER, LAWS, 0, 1>(list, nlist);
+    else deform_and_break<DIM, ORDER, LAWS, 0, 0>(list, nlist);
+  }
+}
+
+// pass (1) fused with the stretch criterion for the particles of list (all
+// local particles when list is null)
+void PairTLSPHDamage::deform_and_break_pass(const int *list, int nlist)
+{
+  if (dim == 2) {
+    if (order == 1) {
+      if (any_orthotropic) dispatch_break<2, 1, 1>(list, nlist);
+      else dispatch_break<2, 1, 0>(list, nlist);
+    } else {
+      if (any_orthotropic) dispatch_break<2, 2, 1>(list, nlist);
+      else dispatch_break<2, 2, 0>(list, nlist);
+    }
+  } else {
+    if (order == 1) {
+      if (any_orthotropic) dispatch_break<3, 1, 1>(list, nlist);
+      else dispatch_break<3, 1, 0>(list, nlist);
+    } else {
+      if (any_orthotropic) dispatch_break<3, 2, 1>(list, nlist);
+      else dispatch_break<3, 2, 0>(list, nlist);
+    }
   }
 }
 
 void PairTLSPHDamage::deformation_pass()
 {
-  if (dim == 2) {
-    if (order == 1) {
-      if (any_orthotropic) dispatch_break<2, 1, 1>();
-      else dispatch_break<2, 1, 0>();
-    } else {
-      if (any_orthotropic) dispatch_break<2, 2, 1>();
-      else dispatch_break<2, 2, 0>();
+  deform_and_break_pass(nullptr, 0);
+}
+
+/* The SIMD step's pass (1) screens every bond against the stretch limits
+   loosened by SIMD_SCREEN_MARGIN (the screen must never miss a bond that
+   the exact test breaks; its vector sums differ from bond_breaks' by
+   round-off, ~1e-16 relative): the lowest upper and the highest lower limit
+   of all type pairs; lower -1 (never) without 'criterion absolute'. */
+bool PairTLSPHDamage::simd_screen(double &up, double &down) const
+{
+  constexpr double SIMD_SCREEN_MARGIN = 1.0e-8;
+  const int ntp = atom->ntypes + 1;
+  up = 1.0e300;
+  down = -1.0;
+  for (int a = 1; a < ntp; a++)
+    for (int b = 1; b < ntp; b++) {
+      up = MIN(up, stretch_up[a * ntp + b]);
+      if (absolute) down = MAX(down, stretch_down[a * ntp + b]);
     }
-  } else {
-    if (order == 1) {
-      if (any_orthotropic) dispatch_break<3, 1, 1>();
-      else dispatch_break<3, 1, 0>();
-    } else {
-      if (any_orthotropic) dispatch_break<3, 2, 1>();
-      else dispatch_break<3, 2, 0>();
-    }
-  }
+  up *= 1.0 - SIMD_SCREEN_MARGIN;
+  if (absolute) down *= 1.0 + SIMD_SCREEN_MARGIN;
+  return true;
+}
+
+/* the particles the screen flagged: pass (1) again, the scalar one with the
+   exact test (bonds break, F, the stress and the packed row from the bonds
+   left), then their columns from their rows */
+void PairTLSPHDamage::simd_breaks(const int *list, int n)
+{
+  deform_and_break_pass(list, n);
+  for (int q = 0; q < n; q++) ell_row_to_columns(list[q]);
 }
 
 /* ----------------------------------------------------------------------

@@ -31,9 +31,6 @@ class PairTLSPHDamage : public PairTLSPH {
   ~PairTLSPHDamage() override;
   void settings(int, char **) override;
   void init_style() override;
-  // its bonds break inside its own deformation pass (scalar); the SIMD step's
-  // force pass then reads the layout with the broken bonds' slots zeroed
-  bool simd_deformation_capable() const override { return false; }
   double init_one(int, int) override;
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
@@ -120,8 +117,14 @@ class PairTLSPHDamage : public PairTLSPH {
   bool crosses_crack(const double *A, const double *B) const;
   void recorrect(int i);
   // ABS: absolute criterion; PAIRS: per-type-pair limits (types differ in s_c)
-  template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS> void deform_and_break();
-  template <int DIM, int ORDER, int LAWS> void dispatch_break();
+  template <int DIM, int ORDER, int LAWS, int ABS, int PAIRS>
+  void deform_and_break(const int *list, int nlist);
+  template <int DIM, int ORDER, int LAWS> void dispatch_break(const int *list, int nlist);
+  void deform_and_break_pass(const int *list, int nlist);
+  // the SIMD step: its screen of the stretch limits, the exact test on the flagged particles
+  bool simd_screen(double &up, double &down) const override;
+  void simd_breaks(const int *list, int n) override;
+  bool alpha_after_deformation() const override { return true; }
 };
 
 }    // namespace LAMMPS_NS

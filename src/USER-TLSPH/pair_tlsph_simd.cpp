@@ -63,7 +63,8 @@ constexpr double ELL_SHARE_TOL = 1.0e-13;
 constexpr double ELL_UNION_SLACK = 1.25;
 using TLSPH::EllArrays;
 using TLSPH::EllParticles;
-using DeformFn = void (*)(const EllArrays &, const EllParticles &, double *, TLSPH::EllStress *);
+using DeformFn = void (*)(const EllArrays &, const EllParticles &, double *, TLSPH::EllStress *,
+                          TLSPH::EllScreen *);
 using ForceFn = void (*)(const EllArrays &, const EllParticles &);
 
 #if TLSPH_ELL_VEC
@@ -106,9 +107,9 @@ using ForceFn = void (*)(const EllArrays &, const EllParticles &);
 // the drivers (one copy per instruction set)
 #define TLSPH_ELL_DRIVERS(NS, ATTR, PIECES)                                                  \
   namespace NS {                                                                             \
-  template <int DIM, int ORDER>                                                              \
+  template <int DIM, int ORDER, int SCREEN>                                                  \
   ATTR void deformation(const EllArrays &e, const EllParticles &p, double *F,               \
-                        TLSPH::EllStress *st)                                                \
+                        TLSPH::EllStress *st, TLSPH::EllScreen *scr)                         \
   {                                                                                          \
     TLSPH_ELL_CHUNKS(PIECES, ELL_D)                                                          \
   }                                                                                          \
@@ -118,7 +119,7 @@ using ForceFn = void (*)(const EllArrays &, const EllParticles &);
     TLSPH_ELL_CHUNKS(PIECES, ELL_F)                                                          \
   }                                                                                          \
   }
-#define ELL_D(w) TLSPH::ell_deformation_stencil<DIM, ORDER, w>(sl, first, h, p, F, st)
+#define ELL_D(w) TLSPH::ell_deformation_stencil<DIM, ORDER, SCREEN, w>(sl, first, h, p, F, st, scr)
 #define ELL_F(w) TLSPH::ell_force_stencil<DIM, ORDER, HG, VISC, MULTI, w>(sl, first, h, p)
 
 TLSPH_ELL_DRIVERS(ell_portable, , TLSPH_ELL_PIECES2)
@@ -127,14 +128,22 @@ TLSPH_ELL_DRIVERS(ell_avx2, TLSPH_ATTR_AVX2, TLSPH_ELL_PIECES4)
 TLSPH_ELL_DRIVERS(ell_avx512, TLSPH_ATTR_AVX512, TLSPH_ELL_PIECES8)
 #endif
 
-template <int DIM, int ORDER> DeformFn pick_deformation(int isa)
+template <int DIM, int ORDER, int SCREEN> DeformFn pick_deformation_screen(int isa)
 {
 #if TLSPH_ELL_X86
-  if (isa == PairTLSPH::SIMD_AVX512) return ell_avx512::deformation<DIM, ORDER>;
-  if (isa == PairTLSPH::SIMD_AVX2) return ell_avx2::deformation<DIM, ORDER>;
+  if (isa == PairTLSPH::SIMD_AVX512) return ell_avx512::deformation<DIM, ORDER, SCREEN>;
+  if (isa == PairTLSPH::SIMD_AVX2) return ell_avx2::deformation<DIM, ORDER, SCREEN>;
 #endif
   (void) isa;
-  return ell_portable::deformation<DIM, ORDER>;
+  return ell_portable::deformation<DIM, ORDER, SCREEN>;
+}
+
+// screen: 0 none, 1 the upper stretch limit, 2 both limits
+template <int DIM, int ORDER> DeformFn pick_deformation(int isa, int screen)
+{
+  if (screen == 2) return pick_deformation_screen<DIM, ORDER, 2>(isa);
+  if (screen == 1) return pick_deformation_screen<DIM, ORDER, 1>(isa);
+  return pick_deformation_screen<DIM, ORDER, 0>(isa);
 }
 
 template <int DIM, int ORDER, int HG, int VISC, int MULTI> ForceFn pick_forces(int isa)
@@ -219,7 +228,8 @@ void PairTLSPH::select_simd()
   if (!simd_capable()) {
     if (simd_request != SIMD_AUTO)
       error->all(FLERR, "pair_style {}: simd {} is not available for this style (only "
-                        "pair_style tlsph has the SIMD step; allowed here: simd auto, simd no)",
+                        "pair_style tlsph and tlsph/damage have the SIMD step; allowed here: simd auto, "
+                        "simd no)",
                  force->pair_style, simd_name(simd_request));
     return;
   }
@@ -510,6 +520,15 @@ void PairTLSPH::ell_fill_lane(int c, int l)
   double *vb = ell.v + (bigint) nv * C * ell.start[c];
   for (int m = 0; m < w; m++)
     for (int q = 0; q < nv; q++) vb[(bigint) nv * C * m + C * q + l] = 0.0;
+  // the particle's Q and s (the stress lanes read them): 'rebuild' corrected
+  // it again from the bonds left, 'setup' took the broken bonds out of s
+  {
+    const EllParticles cp = ell_particles();
+    const int ns = ell_nperm, qsz = correction_size();
+    double *qc = const_cast<double *>(cp.qcol), *sc = const_cast<double *>(cp.scol);
+    for (int q = 0; q < qsz; q++) qc[(bigint) q * ns + k] = Q[i][q];
+    for (int d = 0; d < dim; d++) sc[(bigint) d * ns + k] = sumg[i][d];
+  }
   const int s = bond_start[i];
   for (int mm = 0; mm < nbond[i]; mm++) {
     // the slots are sorted by partner offset (lane 0's partner minus first)
@@ -690,10 +709,19 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
 {
   const int nlocal = atom->nlocal;
   ell_columns_xv();
+  // bonds a tip cut before this pass (tlsph/damage's update_bonds)
+  if (!ell_dirty.empty()) ell_apply_dirty();
   const bool need_K = viscosity_active();
   const int ns = ell_nperm, np = packed_size();
   double *pks = ell_soa + (bigint) 3 * DIM * ns;
-  bool lanes = !LAWS && !(hg_form == 2 && gamma != 0.0) && !alpha_atom;
+  bool lanes = !LAWS && !(hg_form == 2 && gamma != 0.0) && (!alpha_atom || alpha_after_deformation());
+  // tlsph/damage: the stretch screen (simd_screen), the flagged particles to simd_breaks
+  TLSPH::EllScreen scr{0.0, -1.0, nullptr, 0};
+  const int screen = simd_screen(scr.up, scr.down) ? (scr.down > 0.0 ? 2 : 1) : 0;
+  if (screen) {
+    if ((int) ell_flagged.size() < nlocal) ell_flagged.resize(nlocal);
+    scr.list = ell_flagged.data();
+  }
   for (int t = 2; lanes && t <= atom->ntypes; t++)
     lanes = mat[t].lambda == mat[1].lambda && mat[t].mu == mat[1].mu;
 #if TLSPH_ELL_VEC
@@ -717,14 +745,20 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
       st.bad = -1;
       st.badJ = 0.0;
     }
-    pick_deformation<DIM, ORDER>(simd_isa)(ell, ell_particles(), F[0], lanes ? &st : nullptr);
+    pick_deformation<DIM, ORDER>(simd_isa, screen)(ell, ell_particles(), F[0], lanes ? &st : nullptr,
+                                                   screen ? &scr : nullptr);
+    // the flagged particles: the exact test, and F and the stress of what is left
+    if (scr.n) simd_breaks(scr.list, scr.n);
     if (lanes) {
-      if (st.bad >= 0) unstable_particle(st.bad, st.badJ);
+      // a flagged particle's stress came again from simd_breaks, which checked it
+      if (st.bad >= 0 && std::find(scr.list, scr.list + scr.n, st.bad) == scr.list + scr.n)
+        unstable_particle(st.bad, st.badJ);
       return;
     }
   }
 #else
   lanes = false;
+  (void) screen;
 #endif
   double *fcol = ell_particles().fcol;
   for (int k = 0; k < nlocal; k++) {
@@ -736,21 +770,26 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
   }
 }
 
-/* after a style's own pass (1) (simd_deformation_capable false: tlsph/damage)
-   and its after_deformation: the layout of the bonds as they are now, and
-   the columns of the force pass from the local particles' rows (x, v, the
-   packed rows with this step's alpha_i, V_i P_i s_i) */
-void PairTLSPH::simd_columns_from_rows()
+// the columns of local particle i from its rows (the packed row, V_i P_i s_i)
+void PairTLSPH::ell_row_to_columns(int i)
+{
+  const int k = ell_inv[i], ns = ell_nperm, np = packed_size();
+  const EllParticles cp = ell_particles();
+  double *pks = const_cast<double *>(cp.pks);
+  for (int q = 0; q < np; q++) pks[(bigint) q * ns + k] = pk[i][q];
+  for (int d = 0; d < dim; d++) cp.fcol[(bigint) d * ns + k] = fown[i][d];
+}
+
+/* after after_deformation (tlsph/damage: the bonds of this step are
+   decided, alpha_i is in the rows): the lanes of the particles whose bonds
+   broke, and the column of alpha_i */
+void PairTLSPH::simd_after_deformation()
 {
   if (!ell_dirty.empty()) ell_apply_dirty();
-  const int nlocal = atom->nlocal, ns = ell_nperm;
-  ell_columns_xv();
-  ell_columns_pk(0, nlocal);
-  double *fcol = ell_particles().fcol;
-  for (int k = 0; k < nlocal; k++) {
-    const double *fo = fown[ell_perm[k]];
-    for (int d = 0; d < dim; d++) fcol[(bigint) d * ns + k] = fo[d];
-  }
+  if (!alpha_after_deformation()) return;
+  const int nlocal = atom->nlocal, ns = ell_nperm, ia = 2 * dim * dim;    // TLSPH::Packed::A
+  double *acol = const_cast<double *>(ell_particles().pks) + (bigint) ia * ns;
+  for (int k = 0; k < nlocal; k++) acol[k] = pk[ell_perm[k]][ia];
 }
 
 void PairTLSPH::simd_deformation_pass()

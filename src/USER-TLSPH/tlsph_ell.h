@@ -102,6 +102,16 @@ struct EllParticles {
   double h, beta, gamma;
 };
 
+/* The stretch screen of tlsph/damage in pass (1) of the SIMD step: a lane
+   whose bond (a real one: reverse weight != 0) has r^2 >= up r0^2 or, with
+   down > 0, r^2 <= down r0^2 is appended to list (its LAMMPS index; the
+   caller sizes list for every local particle). */
+struct EllScreen {
+  double up, down;
+  int *list;
+  int n;
+};
+
 }    // namespace TLSPH
 
 #endif

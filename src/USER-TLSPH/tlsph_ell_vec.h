@@ -167,25 +167,45 @@ TLSPH_FORCE_INLINE void ell_stress_lanes(const V *Fa, long i0, const EllParticle
   }
 }
 
-template <int DIM, int ORDER, int W, class Slots>
+template <int DIM, int ORDER, int SCREEN, int W, class Slots>
 TLSPH_FORCE_INLINE void ell_deformation_stencil(const Slots &sl, int first, int h,
                                                 const EllParticles &p, double *F,
-                                                EllStress *st)
+                                                EllStress *st, EllScreen *scr)
 {
   using V = typename EllVecOf<W>::type;
   const long ns = p.ns, i0 = (long) first + h;
   V xi[DIM], x0i[DIM], Fa[DIM * DIM];
   for (int d = 0; d < DIM; d++) xi[d] = ell_load<V>(p.xs + d * ns + i0), x0i[d] = ell_load<V>(p.x0s + d * ns + i0);
   for (int k = 0; k < DIM * DIM; k++) Fa[k] = V{};
+  // SCREEN 1: the largest r^2 - up r0^2 of the lane's bonds; 2: or down r0^2 - r^2
+  V worst = ell_splat<V>(-1.0);
   for (int m = 0; m < sl.n; m++) {
     const long j0 = sl.j0(m) + h;
-    V du[DIM], g[DIM];
-    for (int d = 0; d < DIM; d++)
-      du[d] = (ell_load<V>(p.xs + d * ns + j0) - xi[d]) - (ell_load<V>(p.x0s + d * ns + j0) - x0i[d]);
+    V dx[DIM], X[DIM], du[DIM], g[DIM];
+    for (int d = 0; d < DIM; d++) {
+      dx[d] = ell_load<V>(p.xs + d * ns + j0) - xi[d];
+      X[d] = ell_load<V>(p.x0s + d * ns + j0) - x0i[d];
+      du[d] = dx[d] - X[d];
+    }
     for (int k = 0; k < DIM; k++) g[k] = sl.template val<V>(m, k, h);
     for (int r = 0; r < DIM; r++)
       for (int k = 0; k < DIM; k++) Fa[DIM * r + k] += du[r] * g[k];
+    if (SCREEN) {
+      V r2 = V{}, r02 = V{};
+      for (int d = 0; d < DIM; d++) r2 += dx[d] * dx[d], r02 += X[d] * X[d];
+      V q = r2 - scr->up * r02;
+      if (SCREEN == 2) {
+        const V q2 = scr->down * r02 - r2;
+        q = q > q2 ? q : q2;
+      }
+      // padded and broken slots (zero weights) are no bonds
+      q = sl.template val<V>(m, EllShape<DIM>::CREV, h) != V{} ? q : ell_splat<V>(-1.0);
+      worst = worst > q ? worst : q;
+    }
   }
+  if (SCREEN)
+    for (int l = 0; l < W; l++)
+      if (worst[l] >= 0.0) scr->list[scr->n++] = p.perm[i0 + l];
   if (st) {
     ell_stress_lanes<DIM, ORDER, W>(Fa, i0, p, *st);
     return;

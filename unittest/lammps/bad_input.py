@@ -252,8 +252,8 @@ CASES = [
     ("file_empty", pc("* * empty.tlsph steel steel"), {"empty.tlsph": "# nothing\n"}, r"material 'steel' \(atom type 1\) not found in file 'empty\.tlsph'"),
     # ------------------------------------------------ pair_style tlsph/damage
     ("pd_alpha_d_word", pds(f"{H} alpha_d x"), {}, r"pair_style tlsph/damage: alpha_d needs a number"),
-    ("pd_simd_portable", pds(f"{H} simd portable"), {},
-     r"pair_style tlsph/damage: simd portable is not available for this style \(only pair_style tlsph has the SIMD step; allowed here: simd auto, simd no\)"),
+    ("pd_simd_word", pds(f"{H} simd fast"), {},
+     r"simd must be 'auto', 'no', 'portable', 'avx2' or 'avx512', got 'fast'"),
     ("pd_alpha_d_negative", pds(f"{H} alpha_d -1"), {}, r"pair_style tlsph/damage: alpha_d must be >= 0"),
     ("pd_alpha_d_missing", pds(f"{H} alpha_d"), {}, r"pair_style tlsph/damage: alpha_d needs a value"),
     ("pd_criterion_bad", pds(f"{H} criterion shear"), {}, r"criterion must be 'tension', 'absolute' or 'tip', got 'shear'"),
