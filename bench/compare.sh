@@ -102,7 +102,7 @@ def lattice_bonds(dim, natoms, support=2.66):
 cpu = subprocess.run("lscpu | sed -n 's/^Model name: *//p'", shell=True, capture_output=True, text=True).stdout.strip()
 import os
 label = {"tlsph": "tlsph (ours, plugin, SIMD step)", "tlsph0": "tlsph (ours, plugin, simd no)",
-         "tlsphd": "tlsph/damage (ours, plugin)",
+         "tlsphd": "tlsph/damage (ours, plugin, SIMD step)",
          "smd": "smd/tlsph (MACHDYN)", "peri": "peri/pmb (PERI, horizon 3.015 dx)"}
 out = ["# Side by side: one LAMMPS binary, alternating runs", "",
        "(2D, 3D: our quadratic gradient; 3D-damage: the linear gradient, tlsph/damage's default, for both of our rows; "

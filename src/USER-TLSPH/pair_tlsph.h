@@ -297,8 +297,8 @@ class PairTLSPH : public Pair {
   void ell_apply_dirty();
   /* tlsph/damage: the SIMD step's pass (1) flags the local particles with a
      bond whose squared length ratio r^2/r0^2 reaches up (or, down > 0, falls
-     to down); false: no screen */
-  virtual bool simd_screen(double &, double &) const { return false; }
+     to down); reach2: TLSPH::EllScreen; false: no screen */
+  virtual bool simd_screen(double &, double &, double &) const { return false; }
   // the flagged particles: the style's exact test, and pass (1) again for them
   virtual void simd_breaks(const int *, int) {}
   // true: after_deformation writes alpha_i into the packed rows (the SIMD

@@ -641,8 +641,10 @@ void PairTLSPHDamage::deformation_pass()
    loosened by SIMD_SCREEN_MARGIN (the screen must never miss a bond that
    the exact test breaks; its vector sums differ from bond_breaks' by
    round-off, ~1e-16 relative): the lowest upper and the highest lower limit
-   of all type pairs; lower -1 (never) without 'criterion absolute'. */
-bool PairTLSPHDamage::simd_screen(double &up, double &down) const
+   of all type pairs; lower -1 (never) without 'criterion absolute'. A
+   family beyond the kernel support (2h) has bonds whose weights are zero
+   there: the screen then takes every slot within the family's reach. */
+bool PairTLSPHDamage::simd_screen(double &up, double &down, double &reach2) const
 {
   constexpr double SIMD_SCREEN_MARGIN = 1.0e-8;
   const int ntp = atom->ntypes + 1;
@@ -655,6 +657,8 @@ bool PairTLSPHDamage::simd_screen(double &up, double &down) const
     }
   up *= 1.0 - SIMD_SCREEN_MARGIN;
   if (absolute) down *= 1.0 + SIMD_SCREEN_MARGIN;
+  const double R = family_radius();
+  reach2 = (R > 2.0 * h) ? R * R * (1.0 + SIMD_SCREEN_MARGIN) : 0.0;
   return true;
 }
 

@@ -122,7 +122,7 @@ class PairTLSPHDamage : public PairTLSPH {
   template <int DIM, int ORDER, int LAWS> void dispatch_break(const int *list, int nlist);
   void deform_and_break_pass(const int *list, int nlist);
   // the SIMD step: its screen of the stretch limits, the exact test on the flagged particles
-  bool simd_screen(double &up, double &down) const override;
+  bool simd_screen(double &up, double &down, double &reach2) const override;
   void simd_breaks(const int *list, int n) override;
   bool alpha_after_deformation() const override { return true; }
 };

@@ -716,8 +716,8 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
   double *pks = ell_soa + (bigint) 3 * DIM * ns;
   bool lanes = !LAWS && !(hg_form == 2 && gamma != 0.0) && (!alpha_atom || alpha_after_deformation());
   // tlsph/damage: the stretch screen (simd_screen), the flagged particles to simd_breaks
-  TLSPH::EllScreen scr{0.0, -1.0, nullptr, 0};
-  const int screen = simd_screen(scr.up, scr.down) ? (scr.down > 0.0 ? 2 : 1) : 0;
+  TLSPH::EllScreen scr{0.0, -1.0, 0.0, nullptr, 0};
+  const int screen = simd_screen(scr.up, scr.down, scr.reach2) ? (scr.down > 0.0 ? 2 : 1) : 0;
   if (screen) {
     if ((int) ell_flagged.size() < nlocal) ell_flagged.resize(nlocal);
     scr.list = ell_flagged.data();

@@ -103,11 +103,15 @@ struct EllParticles {
 };
 
 /* The stretch screen of tlsph/damage in pass (1) of the SIMD step: a lane
-   whose bond (a real one: reverse weight != 0) has r^2 >= up r0^2 or, with
-   down > 0, r^2 <= down r0^2 is appended to list (its LAMMPS index; the
-   caller sizes list for every local particle). */
+   whose bond has r^2 >= up r0^2 or, with down > 0, r^2 <= down r0^2 is
+   appended to list (its LAMMPS index; the caller sizes list for every local
+   particle). A slot is taken for a bond when its reverse weight is not zero
+   (padded and broken slots have zero weights) or, when the bond family
+   reaches beyond the kernel support (whose bonds there have zero weights
+   too), when r0^2 < reach2 (0: no such bonds); a padded or broken slot
+   taken so only costs the exact test of its particle. */
 struct EllScreen {
-  double up, down;
+  double up, down, reach2;
   int *list;
   int n;
 };

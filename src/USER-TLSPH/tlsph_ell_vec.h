@@ -198,8 +198,9 @@ TLSPH_FORCE_INLINE void ell_deformation_stencil(const Slots &sl, int first, int 
         const V q2 = scr->down * r02 - r2;
         q = q > q2 ? q : q2;
       }
-      // padded and broken slots (zero weights) are no bonds
-      q = sl.template val<V>(m, EllShape<DIM>::CREV, h) != V{} ? q : ell_splat<V>(-1.0);
+      // padded and broken slots (zero weights) are no bonds (EllScreen)
+      const V cm = sl.template val<V>(m, EllShape<DIM>::CREV, h);
+      q = (cm != V{}) || (r02 < scr->reach2) ? q : ell_splat<V>(-1.0);
       worst = worst > q ? worst : q;
     }
   }

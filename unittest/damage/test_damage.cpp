@@ -1633,6 +1633,13 @@ TEST(SimdStep, same_bonds_break_as_scalar_setup_absolute)
       0.03);
 }
 
+// a bond family beyond the kernel support: bonds with zero weights there
+TEST(SimdStep, same_bonds_break_as_scalar_family)
+{
+  simd_damage_test([](const std::string &w) { return free_plate("family 0.0035 simd " + w); }, 300,
+                   0.03);
+}
+
 TEST(SimdStep, same_bonds_break_as_scalar_tip)
 {
   simd_damage_test(tip_plate, 400, 0.04);
