@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Cost of many crack tips (issue 26, "Cost and scale"): bench/in.manytips
-# (16,000 particles, 110 tips, 300 steps) with tlsph (no damage; the SIMD
-# step), tlsph with 'simd no' (the scalar step), tlsph/damage criterion
-# tension (no tips) and criterion tip, in ONE invocation, ROUNDS (2) rounds
-# alternating, medians of the loop times. Writes bench/manytips.md.
+# (16,000 particles, 110 tips, 300 steps) with tlsph (no damage),
+# tlsph/damage criterion tension (no tips) and criterion tip, each with the
+# SIMD step and with 'simd no' (the scalar step), in ONE invocation, ROUNDS
+# (2) rounds alternating, medians of the loop times. Writes bench/manytips.md.
 #   bash bench/manytips.sh          (LMP_TLSPH= another binary)
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -12,9 +12,9 @@ OUT="$HERE/out/manytips"
 mkdir -p "$OUT"
 : > "$OUT/times.txt"
 for r in $(seq 1 "${ROUNDS:-2}"); do
-  for m in tlsph tlsph-scalar tension tip; do
+  for m in tlsph tlsph-scalar tension tension-scalar tip tip-scalar; do
     model=${m%-scalar}
-    simd=(); [ "$m" = tlsph-scalar ] && simd=(env TLSPH_SIMD=no)
+    simd=(); [ "$m" != "$model" ] && simd=(env TLSPH_SIMD=no)
     "${simd[@]}" "$LMP" -in "$HERE/in.manytips" -var model "$model" -log "$OUT/$m-$r.log" -screen none > /dev/null
     echo "$m $(grep '^Loop time' "$OUT/$m-$r.log" | tail -1 | awk '{print $4}')" >> "$OUT/times.txt"
   done
@@ -38,12 +38,15 @@ print("# Cost of many crack tips (bench/manytips.sh)\n")
 print("- date: %s, commit `%s`, CPU: %s, 1 rank" % (datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), commit, cpu))
 print("- bench/in.manytips: 16,000 particles, %d crack tips, 300 steps; %d round(s) alternating in one "
       "invocation, median loop time\n" % (tips, len(t["tip"])))
-print("| model | loop time [s] | / tlsph (SIMD step) | / tlsph (scalar step) | / tension |")
-print("|---|---:|---:|---:|---:|")
-names = {"tlsph": "tlsph (SIMD step)", "tlsph-scalar": "tlsph, simd no (scalar step)",
-         "tension": "tlsph/damage criterion tension (no tips)", "tip": "tlsph/damage criterion tip branch yoffe"}
-for m in ("tlsph", "tlsph-scalar", "tension", "tip"):
-    print("| %s | %.3f | %.2f | %.2f | %.2f |" % (names[m], med[m], med[m] / med["tlsph"],
-          med[m] / med["tlsph-scalar"], med[m] / med["tension"]))
+print("| model | step | loop time [s] | / tlsph, same step | / tlsph (SIMD step) | / tension, same step |")
+print("|---|---|---:|---:|---:|---:|")
+names = {"tlsph": "tlsph", "tension": "tlsph/damage criterion tension (no tips)",
+         "tip": "tlsph/damage criterion tip branch yoffe"}
+for m in ("tlsph", "tlsph-scalar", "tension", "tension-scalar", "tip", "tip-scalar"):
+    base, scalar = m.split("-")[0], m.endswith("-scalar")
+    suf = "-scalar" if scalar else ""
+    print("| %s | %s | %.3f | %.2f | %.2f | %.2f |" % (
+        names[base], "simd no (scalar)" if scalar else "SIMD step", med[m], med[m] / med["tlsph" + suf],
+        med[m] / med["tlsph"], med[m] / med["tension" + suf]))
 PY
 cat "$HERE/manytips.md"
