@@ -1040,6 +1040,8 @@ void PairTLSPHDamage::grow_tips()
     Kt[2 * a] = KI;
     Kt[2 * a + 1] = KII;
     tht[a] = th;
+    tp.KI = KI, tp.KII = KII, tp.G = Gt[a], tp.kink = th;
+    tp.speed = 0.0;
     if (Gt[a] < tip_Gc || tp.seg != 0.0) continue;
     // a new segment: the kink angle turns the direction of the faces that
     // K was measured on (not the last segment's, which may already have turned)
@@ -1203,6 +1205,7 @@ void PairTLSPHDamage::grow_tips()
     if (!tp.alive || Gt[a] < tip_Gc) continue;
     const double G = Gt[a];
     const double v = tip_cR * (1.0 - tip_Gc / G);
+    tp.speed = v;
     double P[2] = {tp.path.back()[0], tp.path.back()[1]};
     if (tp.seg == 0.0) {
       const double t0 = nd[2 * a], t1 = nd[2 * a + 1];

@@ -62,8 +62,15 @@ class PairTLSPHDamage : public PairTLSPH {
     double seg;                                 // length grown on the current segment
     double own;                                 // length grown since the tip was born
     int alive, growing;
+    // at the last force evaluation (not in restart files: measured every step)
+    double KI = 0.0, KII = 0.0;    // stress intensity factors (displacement correlation)
+    double G = 0.0;                // energy release rate of the kink direction
+    double kink = 0.0;             // kink angle of the maximum tangential stress [rad]
+    double speed = 0.0;            // advance speed (0: not growing)
   };
   const std::vector<CrackTip> &crack_tips() const { return tips; }
+  double tip_fracture_energy() const { return tip_Gc; }
+  int tip_mode() const { return tipmode; }
 
  protected:
   bool material_key(int, const std::string &, double, const std::string &) override;

@@ -9,6 +9,7 @@
 
 #include "command.h"
 #include "comm.h"
+#include "compute_tlsph_crack_tips.h"
 #include "compute_tlsph_energy.h"
 #include "compute_tlsph_tensor_atom.h"
 #include "error.h"
@@ -130,6 +131,8 @@ const ComputeEntry compute_styles[] = {
      &compute_creator<ComputeTLSPHEnergy>},
     {"tlsph/damage/atom", "damage and smoothed damage of pair tlsph/damage",
      &compute_creator<ComputeTLSPHDamageAtom>},
+    {"tlsph/crack/tips", "crack tips of pair tlsph/damage criterion tip: position, K_I, K_II, G",
+     &compute_creator<ComputeTLSPHCrackTips>},
 };
 
 // one line, to screen and log: the package and the LAMMPS it runs in

@@ -1442,6 +1442,32 @@ run 0
   EXPECT_EQ(wrong_broken, 0);
   EXPECT_EQ(wrong_intact, 0);
 
+  // compute tlsph/crack/tips reports the pair style's tips as they are
+  {
+    lmp->input->one("compute tips all tlsph/crack/tips");
+    const int ic = lmp->modify->find_compute("tips");
+    ASSERT_GE(ic, 0);
+    LAMMPS_NS::Compute *c = lmp->modify->compute[ic];
+    c->init();    // (a run would call it, and move the tips)
+    c->compute_array();
+    c->compute_vector();
+    const auto &tips = pair->crack_tips();
+    ASSERT_EQ(c->size_array_rows, (int) tips.size());
+    EXPECT_EQ(c->vector[0], (double) tips.size());
+    for (size_t a = 0; a < tips.size(); a++) {
+      const double *r = c->array[a];
+      EXPECT_EQ(r[0], tips[a].path.back()[0]);
+      EXPECT_EQ(r[1], tips[a].path.back()[1]);
+      EXPECT_EQ(r[2], tips[a].alive ? 1.0 : 0.0);
+      EXPECT_EQ(r[3], tips[a].KI);
+      EXPECT_EQ(r[4], tips[a].KII);
+      EXPECT_GT(r[3], 0.0) << "a tip pulled open has K_I > 0";
+      EXPECT_NEAR(r[6], tips[a].G / pair->tip_fracture_energy(), 1e-15 * r[6]);
+      // the path: the pre-crack (from x = -1 mm) plus what the tip grew
+      EXPECT_NEAR(r[9], tips[a].path.back()[0] + 0.001, 1e-12) << "a straight path along x";
+    }
+  }
+
   // push back: compression closes the faces, nothing heals
   run_script(lmp, R"(unfix pt
 unfix pb
