@@ -3,7 +3,8 @@
 # ingredient verified"): bench/in.kcheck (a central crack 2a = 10 mm in an
 # 80 x 80 mm glass plate, 2D plane strain, remote tension or remote shear of
 # 1 MPa, relaxed to its static state; nothing grows) at dx = 1, 0.5 and
-# 0.333 mm (DXS), modes I and II side by side on two cores. Writes
+# 0.333 mm (DXS), with both K fits of the tips (KFITS: kfit tip, the
+# default, and kfit offset), modes I and II side by side on two cores. Writes
 # bench/kcheck.md (bench/kcheck_report.py).
 #   bash bench/kcheck.sh            (LMP_TLSPH= another binary; DXS="0.001 0.0005")
 set -euo pipefail
@@ -12,18 +13,21 @@ LMP="${LMP_TLSPH:-$HERE/../build/lmp_tlsph}"
 OUT="$HERE/out/kcheck"
 mkdir -p "$OUT"
 DXS="${DXS:-0.001 0.0005 0.000333333333333}"
+KFITS="${KFITS:-tip offset}"
 for dx in $DXS; do
   # steps between reports: about one wave transit of the plate (c ~ 3600 m/s)
   chunk=$(python3 -c "print(round(1.0e-3 / $dx * 1000))")
-  pids=()
-  for mode in I II; do
-    "$LMP" -in "$HERE/in.kcheck" -var dx "$dx" -var mode "$mode" -var chunk "$chunk" \
-      -var nchunk 8 -log "$OUT/k-$mode-$dx.log" -screen none > /dev/null &
-    pids+=($!)
+  for kfit in $KFITS; do
+    pids=()
+    for mode in I II; do
+      "$LMP" -in "$HERE/in.kcheck" -var dx "$dx" -var mode "$mode" -var kfit "$kfit" \
+        -var chunk "$chunk" -var nchunk 8 -log "$OUT/k-$kfit-$mode-$dx.log" -screen none > /dev/null &
+      pids+=($!)
+    done
+    for p in "${pids[@]}"; do wait "$p"; done
+    echo "kcheck: dx $dx kfit $kfit done" >&2
   done
-  for p in "${pids[@]}"; do wait "$p"; done
-  echo "kcheck: dx $dx done" >&2
 done
 commit=$(git -C "$HERE/.." describe --always --dirty 2>/dev/null || echo unknown)
-python3 "$HERE/kcheck_report.py" "$OUT" "$commit" $DXS > "$HERE/kcheck.md"
+KFITS="$KFITS" python3 "$HERE/kcheck_report.py" "$OUT" "$commit" $DXS > "$HERE/kcheck.md"
 cat "$HERE/kcheck.md"

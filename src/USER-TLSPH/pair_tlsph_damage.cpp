@@ -66,6 +66,7 @@ void PairTLSPHDamage::settings(int narg, char **arg)
   tipmode = 0;
   tip_branch = 0.0;
   tip_hoop = 0;
+  tip_kfit = 0;
   tip_seg = 0.0;
   bool have_branch = false;
   rebuild = 0;    // 'setup' (the thesis): measured better on Kalthoff-Winkler, see doc
@@ -97,6 +98,15 @@ void PairTLSPHDamage::settings(int narg, char **arg)
       else if (strcmp(arg[iarg + 1], "hoop") == 0) tip_hoop = 1;
       else
         error->all(FLERR, "pair_style tlsph/damage: tipdir must be 'faces' or 'hoop', got '{}'",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "kfit") {
+      if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: kfit needs a value");
+      have_branch = true;
+      if (strcmp(arg[iarg + 1], "tip") == 0) tip_kfit = 0;
+      else if (strcmp(arg[iarg + 1], "offset") == 0) tip_kfit = 1;
+      else
+        error->all(FLERR, "pair_style tlsph/damage: kfit must be 'tip' or 'offset', got '{}'",
                    arg[iarg + 1]);
       iarg += 2;
     } else if (key == "tipseg") {
@@ -168,7 +178,7 @@ void PairTLSPHDamage::settings(int narg, char **arg)
     }
   }
   if (have_branch && !tipmode)
-    error->all(FLERR, "pair_style tlsph/damage: branch, tipdir and tipseg are settings of "
+    error->all(FLERR, "pair_style tlsph/damage: branch, tipdir, tipseg and kfit are settings of "
                       "'criterion tip'");
   PairTLSPH::settings((int) base.size(), base.data());
   // the thesis's fracture model uses the linear correction: keep it the default
@@ -249,7 +259,9 @@ void PairTLSPHDamage::write_restart_settings(FILE *fp)
   fwrite(v, sizeof(double), 6, fp);
   for (const auto &c : cracks) fwrite(c.data(), sizeof(double), 9, fp);
   // 'criterion tip': the settings, then every tip with its path (identical on all ranks)
-  double w[6] = {(double) tipmode, (double) tip_hoop, tip_seg, tip_branch, (double) tips_ready,
+  // tipdir and kfit share one value (files written before kfit read as kfit tip)
+  double w[6] = {(double) tipmode, (double) (tip_hoop + 2 * tip_kfit), tip_seg, tip_branch,
+                 (double) tips_ready,
                  (double) tips.size()};
   fwrite(w, sizeof(double), 6, fp);
   for (const auto &tp : tips) {
@@ -287,13 +299,15 @@ void PairTLSPHDamage::read_restart_settings(FILE *fp)
   double w[6];
   if (comm->me == 0) utils::sfread(FLERR, w, sizeof(double), 6, fp, nullptr, error);
   MPI_Bcast(w, 6, MPI_DOUBLE, 0, world);
-  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] == 0.0 || w[1] == 1.0) && w[2] >= 0.0 &&
+  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 3.0 && w[1] == std::floor(w[1])) &&
+        w[2] >= 0.0 &&
         w[3] < 2.0 && (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 && w[5] == std::floor(w[5]) &&
         w[5] < 1.0e7))
     error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
                       "version's layout (written by another version of the package?)");
   tipmode = static_cast<int>(w[0]);
-  tip_hoop = static_cast<int>(w[1]);
+  tip_hoop = static_cast<int>(w[1]) % 2;
+  tip_kfit = static_cast<int>(w[1]) / 2;
   tip_seg = w[2];
   tip_branch = w[3];
   tips_ready = static_cast<int>(w[4]);
@@ -1032,7 +1046,8 @@ void PairTLSPHDamage::grow_tips()
     if (cnt == 0) continue;
     // K_I, K_II (displacement correlation), the kink angle and the
     // equivalent K of the maximum tangential stress (tlsph_crack.h)
-    const TLSPH::CrackK K = TLSPH::displacement_correlation(cnt, rr, jn, jt, tip_Eprime);
+    const TLSPH::CrackK K = tip_kfit ? TLSPH::displacement_correlation_offset(cnt, rr, jn, jt, tip_Eprime)
+                                     : TLSPH::displacement_correlation(cnt, rr, jn, jt, tip_Eprime);
     const double KI = K.KI, KII = K.KII;
     const double th = TLSPH::mts_kink_angle(KI, KII);
     const double Keq = TLSPH::mts_equivalent_K(KI, KII, th);

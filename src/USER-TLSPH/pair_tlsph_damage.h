@@ -104,6 +104,7 @@ class PairTLSPHDamage : public PairTLSPH {
   // of motion, cutting the bonds its path crosses (no other bond breaks)
   int tipmode;
   int tip_hoop;         // direction: 0 kink angle from K_I, K_II, 1 largest hoop stress
+  int tip_kfit;         // K: 0 fit anchored at the path's end, 1 with the tip's offset fitted
   double tip_seg;       // segment length in h (0: the sampling reach)
   double tip_branch;    // half angle of a branching [rad] (0: tips never branch)
   std::vector<CrackTip> tips;

@@ -52,6 +52,55 @@ inline CrackK displacement_correlation(int n, const double *r, const double *jn,
   return CrackK{KI > 0.0 ? KI : 0.0, f * ct};
 }
 
+/* The same with the tip's effective position fitted too (kfit offset).
+   Behind the tip of a discrete crack the faces open as if the tip lay a
+   distance delta further on (the bonds cut through the tip's end weaken the
+   material just ahead of it; measured delta ~ 0.5 h, bench/kcheck.md), and
+   a sample at r then reads du(r) = 8 K / E' sqrt((r + delta) / 2 pi)
+   (1 + O(r)): the fit above, anchored at the path's end, turns that into an
+   error of sqrt(1 + delta / r) that does not shrink with the resolution
+   (the samples lie at fixed multiples of h). Squared, the expansion is
+   du^2 = A r + B + C r^2 + O(r^3) with A = 32 K^2 / (pi E'^2), B = A delta
+   and C from the next Williams term (and a finite crack's curvature): fitted
+   by least squares, K = E' sqrt(pi A / 32), with the sign of the mean jump
+   (K_I = 0 for closed faces, or A <= 0: no sqrt(r) opening). Needs three
+   samples at distinct r; with fewer, displacement_correlation. */
+inline double fit_squared_jump(int n, const double *r, const double *j)
+{
+  // normal equations of j^2 = A r + B + C r^2, solved by Cramer's rule
+  double s[5] = {0, 0, 0, 0, 0}, t[3] = {0, 0, 0};
+  for (int k = 0; k < n; k++) {
+    double p = 1.0;
+    for (int e = 0; e < 5; e++) s[e] += p, p *= r[k];
+    const double y = j[k] * j[k];
+    t[0] += y, t[1] += y * r[k], t[2] += y * r[k] * r[k];
+  }
+  // unknowns (B, A, C) with powers 0, 1, 2: M[a][b] = s[a + b]
+  const double M[3][3] = {{s[0], s[1], s[2]}, {s[1], s[2], s[3]}, {s[2], s[3], s[4]}};
+  const auto det3 = [](const double m[3][3]) {
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+        m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+        m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  };
+  const double d = det3(M);
+  if (!(std::fabs(d) > 0.0)) return 0.0;
+  double MA[3][3] = {{s[0], t[0], s[2]}, {s[1], t[1], s[3]}, {s[2], t[2], s[4]}};
+  return det3(MA) / d;    // A
+}
+
+inline CrackK displacement_correlation_offset(int n, const double *r, const double *jn,
+                                              const double *jt, double Eprime)
+{
+  if (n < 3) return displacement_correlation(n, r, jn, jt, Eprime);
+  double mn = 0.0, mt = 0.0;
+  for (int k = 0; k < n; k++) mn += jn[k], mt += jt[k];
+  const double An = fit_squared_jump(n, r, jn), At = fit_squared_jump(n, r, jt);
+  const double f = Eprime * std::sqrt(M_PI / 32.0);
+  const double KI = (mn > 0.0 && An > 0.0) ? f * std::sqrt(An) : 0.0;
+  const double KII = (At > 0.0) ? (mt >= 0.0 ? 1.0 : -1.0) * f * std::sqrt(At) : 0.0;
+  return CrackK{KI, KII};
+}
+
 /* The maximum-tangential-stress kink angle (Erdogan & Sih): the direction
    theta, from the crack's line, where the hoop stress
    sigma_tt ~ cos(theta/2) [K_I cos^2(theta/2) - 3/2 K_II sin(theta)] is

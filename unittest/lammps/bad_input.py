@@ -259,6 +259,8 @@ CASES = [
     ("pd_criterion_bad", pds(f"{H} criterion shear"), {}, r"criterion must be 'tension', 'absolute' or 'tip', got 'shear'"),
     ("pd_correction_bad", pds(f"{H} correction never"), {}, r"correction must be 'rebuild' or 'setup', got 'never'"),
     ("pd_tipseg_negative", pds(f"{H} criterion tip tipseg -1"), {}, r"tipseg must be >= 0"),
+    ("pd_kfit_bad", pds(f"{H} criterion tip kfit best"), {}, r"pair_style tlsph/damage: kfit must be 'tip' or 'offset', got 'best'"),
+    ("pd_kfit_without_tip", pds(f"{H} kfit offset"), {}, r"branch, tipdir, tipseg and kfit are settings of 'criterion tip'"),
     ("pd_branch_word", pds(f"{H} criterion tip branch wide"), {}, r"pair_style tlsph/damage: branch needs a number, got 'wide'"),
     ("pd_tipdir_missing", pds(f"{H} criterion tip tipdir"), {}, r"tipdir needs a value"),
     ("pd_tip_3d_not_through", pds(f"{H} criterion tip precrack 0.002 0.002 0.002 0.004 0.002 0.002 0.002 0.004 0.002", dim=3,
