@@ -5,7 +5,8 @@
 # 1 MPa, relaxed to its static state; nothing grows) at dx = 1, 0.5 and
 # 0.333 mm (DXS), with both K fits of the tips (KFITS: kfit tip, the
 # default, and kfit offset), modes I and II side by side on two cores. Writes
-# bench/kcheck.md (bench/kcheck_report.py).
+# bench/kcheck.md (bench/kcheck_report.py; the sampling constants scanned on
+# the relaxed fields by bench/kcheck_scan.py).
 #   bash bench/kcheck.sh            (LMP_TLSPH= another binary; DXS="0.001 0.0005")
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -20,7 +21,9 @@ for dx in $DXS; do
   for kfit in $KFITS; do
     pids=()
     for mode in I II; do
-      "$LMP" -in "$HERE/in.kcheck" -var dx "$dx" -var mode "$mode" -var kfit "$kfit" \
+      # the fields do not depend on the fit (nothing grows): dumped once
+      dumps=none; [ "$kfit" = tip ] && dumps="$OUT"
+      "$LMP" -in "$HERE/in.kcheck" -var dx "$dx" -var mode "$mode" -var kfit "$kfit" -var dumps "$dumps" \
         -var chunk "$chunk" -var nchunk 8 -log "$OUT/k-$kfit-$mode-$dx.log" -screen none > /dev/null &
       pids+=($!)
     done
@@ -29,5 +32,13 @@ for dx in $DXS; do
   done
 done
 commit=$(git -C "$HERE/.." describe --always --dirty 2>/dev/null || echo unknown)
-KFITS="$KFITS" python3 "$HERE/kcheck_report.py" "$OUT" "$commit" $DXS > "$HERE/kcheck.md"
+{ KFITS="$KFITS" python3 "$HERE/kcheck_report.py" "$OUT" "$commit" $DXS
+  echo
+  echo "## The sampling constants (bench/kcheck_scan.py, on the fields of the runs above)"
+  echo
+  echo "The start r0 of the four samples (r = r0 + 0.5 h k) and the radius of their discs, each at half, at and at"
+  echo "twice the model's value (1.5 h), with both fits, re-implemented in Python from grow_tips and tlsph_crack.h;"
+  echo "the model's values give the K of the table above."
+  echo
+  python3 "$HERE/kcheck_scan.py" "$OUT" $DXS; } > "$HERE/kcheck.md"
 cat "$HERE/kcheck.md"
