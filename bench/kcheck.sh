@@ -22,9 +22,10 @@ for dx in $DXS; do
     pids=()
     for mode in I II; do
       # the fields do not depend on the fit (nothing grows): dumped once
-      dumps=none; [ "$kfit" = tip ] && dumps="$OUT"
-      "$LMP" -in "$HERE/in.kcheck" -var dx "$dx" -var mode "$mode" -var kfit "$kfit" -var dumps "$dumps" \
-        -var chunk "$chunk" -var nchunk 8 -log "$OUT/k-$kfit-$mode-$dx.log" -screen none > /dev/null &
+      dumps=no; [ "$kfit" = tip ] && dumps=yes
+      (cd "$OUT" && "$LMP" -in "$HERE/in.kcheck" -var dx "$dx" -var mode "$mode" -var kfit "$kfit" \
+        -var dumps "$dumps" -var chunk "$chunk" -var nchunk 8 -log "$OUT/k-$kfit-$mode-$dx.log" \
+        -screen none > /dev/null) &
       pids+=($!)
     done
     for p in "${pids[@]}"; do wait "$p"; done
