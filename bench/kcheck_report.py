@@ -23,7 +23,11 @@ K0 = LOAD * math.sqrt(math.pi * A) * F
 def rows(path):
     """thermo rows of the run: step, time, K1_I, K1_II, K2_I, K2_II, ke, se, resets"""
     r, on = [], False
-    for line in open(path):
+    try:
+        lines = open(path).readlines()
+    except OSError:
+        return r
+    for line in lines:
         if line.startswith("Step"):
             on = True
             continue
@@ -44,22 +48,25 @@ except Exception:
 print("# Stress intensity factors of crack-tip tracking against theory (bench/kcheck.sh)\n")
 print("- date: %s, commit `%s`, CPU: %s" % (datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), commit, cpu))
 print("- bench/in.kcheck: central crack 2a = %g mm on y = 0 in a %g x %g mm glass plate (E 32 GPa, nu 0.2), "
-      "2D plane strain, the recommended model's h = 1.33 dx (pair_style tlsph/damage criterion tip), "
+      "2D plane strain, the recommended model (h = 1.33 dx, pair_style tlsph/damage criterion tip, gamma 0; "
+      "gamma 1: the same with the hourglass control on), "
       "G_c 1e9 J/m^2 (nothing grows), remote tension (mode I) or shear (mode II) of %g MPa as edge "
       "tractions, fix tlsph/relax; K from compute tlsph/crack/tips at the end (8 report intervals of "
       "about one wave transit each); kfit tip: the fit anchored at the path's end (the default), "
       "kfit offset: the tip's effective position fitted too (tlsph_crack.h)" % (2e3 * A, 1e3 * W, 1e3 * W, LOAD / 1e6))
 print("- reference: K = load sqrt(pi a) F(a/b) = %.1f Pa m^0.5 (F = %.4f, a/b = %.3f; Tada's "
       "finite-width factor, the same for mode II)\n" % (K0, F, lam))
-print("| kfit | mode | dx [mm] | a / h | K, tip 1 | K, tip 2 | K / reference | error | other mode's K / "
-      "reference | change over the last interval |")
-print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
-for kfit in os.environ.get("KFITS", "tip offset").split():
+print("| gamma | kfit | mode | dx [mm] | a / h | K, tip 1 | K, tip 2 | K / reference | error | other mode's "
+      "K / reference | change over the last interval |")
+print("|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+for gamma in os.environ.get("GAMMAS", "0.0").split():
+ for kfit in os.environ.get("KFITS", "tip offset").split():
+  tag = kfit if gamma == "0.0" else "%s-g%s" % (kfit, gamma)
   for mode in ("I", "II"):
     for dx in dxs:
-        r = rows("%s/k-%s-%s-%s.log" % (out, kfit, mode, dx))
+        r = rows("%s/k-%s-%s-%s.log" % (out, tag, mode, dx))
         if len(r) < 2:
-            print("| %s | %s | %.3f | - | run failed | | | | | |" % (kfit, mode, 1e3 * float(dx)))
+            print("| %s | %s | %s | %.3f | - | run failed | | | | | |" % (gamma, kfit, mode, 1e3 * float(dx)))
             continue
         last, prev = r[-1], r[-2]
         col = 2 if mode == "I" else 3
@@ -68,5 +75,5 @@ for kfit in os.environ.get("KFITS", "tip offset").split():
         km = 0.5 * (abs(k1) + abs(k2))
         change = abs(km - 0.5 * (abs(prev[col]) + abs(prev[col + 2]))) / km if km else float("nan")
         h = 1.33 * float(dx)
-        print("| %s | %s | %.3f | %.2f | %.1f | %.1f | %.4f | %+.1f %% | %.2g | %.2g %% |" % (
-            kfit, mode, 1e3 * float(dx), A / h, k1, k2, km / K0, 100 * (km / K0 - 1), other / K0, 100 * change))
+        print("| %s | %s | %s | %.3f | %.2f | %.1f | %.1f | %.4f | %+.1f %% | %.2g | %.2g %% |" % (
+            gamma, kfit, mode, 1e3 * float(dx), A / h, k1, k2, km / K0, 100 * (km / K0 - 1), other / K0, 100 * change))
