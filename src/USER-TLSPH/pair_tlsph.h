@@ -293,6 +293,7 @@ class PairTLSPH : public Pair {
   {
     if (simd_isa != SIMD_NO) ell_dirty.push_back(i);
   }
+  void ell_put_bond(double *vb, int l, int i, int mm) const;
   void ell_fill_lane(int c, int l);
   void ell_apply_dirty();
   /* tlsph/damage: the SIMD step's pass (1) flags the local particles with a

@@ -369,20 +369,13 @@ void PairTLSPH::build_ell()
     sj.assign((size_t) C * w, 0);
     sv.assign((size_t) nv * C * w, 0.0);
     for (int l = 0; l < ell.n[c]; l++) {
-      const int ii = first + l, i = ell_perm[ii], s = bond_start[i];
+      const int ii = first + l, i = ell_perm[ii];
       const int b0 = bo_start[ii], nb = bo_start[ii + 1] - b0;
       int q = 0;    // the lane's next own bond (sorted like the offsets)
       for (int m = 0; m < w; m++) {
         sj[(size_t) C * m + l] = ii + off[m];
         if (q < nb && bo[b0 + q].first - ii == off[m]) {
-          double *vb = sv.data() + (size_t) nv * C * m;
-          const int mm = bo[b0 + q].second;
-          const bigint e = s + mm;
-          for (int k = 0; k < dim; k++) vb[C * k + l] = lean.g[dim * e + k];
-          vb[C * dim + l] = lean.w[2 * e];
-          vb[C * (dim + 1) + l] = lean.w[2 * e + 1];
-          vb[C * (dim + 2) + l] =
-              (dim == 2) ? bonds_of<2>(i).reverse_weight(mm) : bonds_of<3>(i).reverse_weight(mm);
+          ell_put_bond(sv.data() + (size_t) nv * C * m, l, i, bo[b0 + q].second);
           q++;
         }
       }
@@ -507,6 +500,18 @@ void PairTLSPH::build_ell()
   }
 }
 
+// the values of bond mm of local particle i into lane l of the slot block vb (tlsph_ell.h)
+void PairTLSPH::ell_put_bond(double *vb, int l, int i, int mm) const
+{
+  constexpr int C = TLSPH::ELL_C;
+  const bigint e = bond_start[i] + mm;
+  for (int k = 0; k < dim; k++) vb[C * k + l] = lean.g[dim * e + k];
+  vb[C * dim + l] = lean.w[2 * e];
+  vb[C * (dim + 1) + l] = lean.w[2 * e + 1];
+  vb[C * (dim + 2) + l] =
+      (dim == 2) ? bonds_of<2>(i).reverse_weight(mm) : bonds_of<3>(i).reverse_weight(mm);
+}
+
 /* Lane l of chunk c from the bond cache as it is now (tlsph/damage, after
    bonds of its particle broke): every slot zero, then the values of each
    intact bond in the slot of its partner offset, as build_ell fills them;
@@ -542,13 +547,7 @@ void PairTLSPH::ell_fill_lane(int c, int l)
     if (lo == w || jb[(bigint) C * lo] - first != off)
       error->one(FLERR, "pair {}: internal error: a bond of atom {} has no slot in the SIMD "
                         "step's layout", force->pair_style, atom->tag[i]);
-    double *vm = vb + (bigint) nv * C * lo;
-    const bigint e = s + mm;
-    for (int d = 0; d < dim; d++) vm[C * d + l] = lean.g[dim * e + d];
-    vm[C * dim + l] = lean.w[2 * e];
-    vm[C * (dim + 1) + l] = lean.w[2 * e + 1];
-    vm[C * (dim + 2) + l] =
-        (dim == 2) ? bonds_of<2>(i).reverse_weight(mm) : bonds_of<3>(i).reverse_weight(mm);
+    ell_put_bond(vb + (bigint) nv * C * lo, l, i, mm);
   }
 }
 
