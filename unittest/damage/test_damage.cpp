@@ -1335,10 +1335,12 @@ std::vector<Path> tip_paths(LAMMPS *lmp)
 
 }    // namespace
 
-TEST(TipCriterion, cuts_the_bonds_across_its_path_only)
+namespace {
+// a 40 x 20 mm glass plate with a pre-crack from the left edge to x = 15 mm,
+// pulled apart by its top and bottom rows; pair_extra: more pair_style keywords
+std::string tip_plate_deck(const std::string &pair_extra)
 {
-  LAMMPS *lmp = open_lammps();
-  run_script(lmp, R"(units si
+  return R"(units si
 dimension 2
 boundary s s p
 atom_style peri
@@ -1349,7 +1351,8 @@ create_box 1 box
 create_atoms 1 box
 set type 1 volume 1e-6
 set type 1 mass 2.45e-3
-pair_style tlsph/damage h 0.00133 alpha 0.03 alpha_d 0.4 gamma 0 criterion tip precrack -0.001 0.010 0.015 0.010
+pair_style tlsph/damage h 0.00133 alpha 0.03 alpha_d 0.4 criterion tip precrack -0.001 0.010 0.015 0.010 )" +
+      pair_extra + R"(
 pair_coeff 1 1 E 32e9 nu 0.2 rho 2450 Gc 3
 region topr block INF INF 19 INF INF INF
 region botr block INF INF INF 1 INF INF
@@ -1361,8 +1364,16 @@ fix pb bot move linear 0 -0.5 NULL units box
 fix nve mid nve
 timestep 5e-8
 compute dmg all tlsph/damage/atom
+thermo 1000
 run 0
-)");
+)";
+}
+}    // namespace
+
+TEST(TipCriterion, cuts_the_bonds_across_its_path_only)
+{
+  LAMMPS *lmp = open_lammps();
+  run_script(lmp, tip_plate_deck("gamma 0"));
   Atom *atom = lmp->atom;
   PairTLSPHDamage *pair = damage_pair(lmp);
   ASSERT_NE(pair, nullptr);
@@ -1588,33 +1599,7 @@ void simd_damage_test(const std::function<std::string(const std::string &)> &scr
 
 std::string tip_plate(const std::string &word)
 {
-  return R"(units si
-dimension 2
-boundary s s p
-atom_style peri
-atom_modify map array
-lattice sq 0.001 origin 0.5 0.5 0.0
-region box block 0 40 0 20 -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-set type 1 volume 1e-6
-set type 1 mass 2.45e-3
-pair_style tlsph/damage h 0.00133 alpha 0.03 alpha_d 0.4 gamma 1.0 criterion tip precrack -0.001 0.010 0.015 0.010 simd )" +
-      word + R"(
-pair_coeff 1 1 E 32e9 nu 0.2 rho 2450 Gc 3
-region topr block INF INF 19 INF INF INF
-region botr block INF INF INF 1 INF INF
-group top region topr
-group bot region botr
-group mid subtract all top bot
-fix pt top move linear 0 0.5 NULL units box
-fix pb bot move linear 0 -0.5 NULL units box
-fix nve mid nve
-timestep 5e-8
-compute dmg all tlsph/damage/atom
-thermo 1000
-run 0
-)";
+  return tip_plate_deck("gamma 1.0 simd " + word);
 }
 
 std::string split_block_3d(const std::string &word)
