@@ -18,6 +18,7 @@
 #include "tlsph_pair_terms.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -33,7 +34,9 @@ PairTLSPHDamage::PairTLSPHDamage(LAMMPS *lmp) : PairTLSPH(lmp)
   family = 0.0;
   damping_linear = 0;
   nmax_d = 0;
-  phi = phis = alphas = nullptr;
+  phi = phis = alphas = phi_prev = mark = nullptr;
+  phis_valid = 0;
+  phis_stamp = {-1, -1, -1};
   comm_stage = 0;
   nbroken_local = 0;
   order = 1;
@@ -48,6 +51,8 @@ PairTLSPHDamage::~PairTLSPHDamage()
   memory->destroy(phi);
   memory->destroy(phis);
   memory->destroy(alphas);
+  memory->destroy(phi_prev);
+  memory->destroy(mark);
 }
 
 /* ----------------------------------------------------------------------
@@ -410,10 +415,15 @@ void PairTLSPHDamage::grow_damage()
   memory->destroy(phi);
   memory->destroy(phis);
   memory->destroy(alphas);
+  memory->destroy(phi_prev);
+  memory->destroy(mark);
   memory->create(phi, nmax_d, "tlsph/damage:phi");
   memory->create(phis, nmax_d, "tlsph/damage:phis");
   memory->create(alphas, nmax_d, "tlsph/damage:alpha");
+  memory->create(phi_prev, nmax_d, "tlsph/damage:phi_prev");
+  memory->create(mark, nmax_d, "tlsph/damage:mark");
   alpha_atom = alphas;
+  phis_valid = 0;
 }
 
 double PairTLSPHDamage::kernel_value(int i, int m) const
@@ -735,7 +745,6 @@ void PairTLSPHDamage::after_deformation()
   // few, mark their intact partners -- ghosts included, whose marks the
   // reverse communication adds to their owners -- and only the marked
   // particles need the weighted mean: no pass over every bond.
-  double *mark = phis;    // ghost entries of phis are otherwise unused
   const int nall = nlocal + atom->nghost;
   for (int i = 0; i < nall; i++) mark[i] = 0.0;
   for (int i = 0; i < nlocal; i++) {
@@ -746,6 +755,20 @@ void PairTLSPHDamage::after_deformation()
   comm_stage = 2;
   comm->reverse_comm_pair(this);
   comm_stage = 0;
+
+  // The weighted mean of a marked particle depends only on its intact bonds
+  // and its partners' damage. Between two rebuilds of the bond cache (the
+  // particle indices are those of the last neighbor build) its bonds only
+  // break, and a broken bond changes the damage of both ends; so phi'_i is
+  // recomputed only where phi changed on i or a partner since the last step
+  // (the same operations on the same values: the same bits), and in full
+  // after a rebuild or a new run. A crack that stands still costs no
+  // kernel evaluations.
+  const std::array<int, 3> stamp = {cache_version, nlocal, atom->nghost};
+  const bool full = !phis_valid || stamp != phis_stamp;
+  phis_valid = 1;
+  phis_stamp = stamp;
+  auto changed = [&](int j) { return phi[j] != phi_prev[j]; };
   // alpha_i in the packed row (TLSPH::Packed::A)
   const int ia = 2 * dim * dim;
   for (int i = 0; i < nlocal; i++) {
@@ -756,33 +779,38 @@ void PairTLSPHDamage::after_deformation()
     } else {
       const int *bj = lean.j + bond_start[i];
       const int n = nbond[i];
-      double num = 0.0, den = 0.0;
-      for (int m = 0; m < n; m++) {
-        const double w = kernel_value(i, m);
-        num += phi[bj[m]] * w;
-        den += w;
+      bool dirty = full || changed(i);
+      for (int m = 0; m < n && !dirty; m++) dirty = changed(bj[m]);
+      if (dirty) {
+        double num = 0.0, den = 0.0;
+        for (int m = 0; m < n; m++) {
+          const double w = kernel_value(i, m);
+          num += phi[bj[m]] * w;
+          den += w;
+        }
+        // phi_i - sum_j (phi_i - phi_j) W_ij / sum_j W_ij, written as the
+        // W-weighted mean of the partners' damage: the difference form leaves
+        // +-1e-17 where it should be 0, and that would switch alpha_d on
+        phis[i] = (den > 0.0) ? num / den : 0.0;
       }
-      // phi_i - sum_j (phi_i - phi_j) W_ij / sum_j W_ij, written as the
-      // W-weighted mean of the partners' damage: the difference form leaves
-      // +-1e-17 where it should be 0, and that would switch alpha_d on
-      phis[i] = (den > 0.0) ? num / den : 0.0;
     }
     // adaptive viscosity (thesis Eq. 2.35: alpha_d wherever phi' > 0; or
     // 'damping linear': growing with phi' from alpha to alpha_d)
     alphas[i] = damaged_alpha(phis[i], alpha, alpha_d, damping_linear);
     pk[i][ia] = alphas[i];
   }
+  std::copy(phi, phi + nall, phi_prev);
 }
 
 int PairTLSPHDamage::pack_reverse_comm(int n, int first, double *buf)
 {
-  for (int i = 0; i < n; i++) buf[i] = phis[first + i];
+  for (int i = 0; i < n; i++) buf[i] = mark[first + i];
   return n;
 }
 
 void PairTLSPHDamage::unpack_reverse_comm(int n, int *list, double *buf)
 {
-  for (int i = 0; i < n; i++) phis[list[i]] += buf[i];
+  for (int i = 0; i < n; i++) mark[list[i]] += buf[i];
 }
 
 int PairTLSPHDamage::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
@@ -803,7 +831,7 @@ void PairTLSPHDamage::unpack_forward_comm(int n, int first, double *buf)
 
 double PairTLSPHDamage::memory_usage()
 {
-  return PairTLSPH::memory_usage() + 3.0 * nmax_d * sizeof(double);
+  return PairTLSPH::memory_usage() + 5.0 * nmax_d * sizeof(double);
 }
 
 /* ----------------------------------------------------------------------
@@ -811,18 +839,80 @@ double PairTLSPHDamage::memory_usage()
 ------------------------------------------------------------------------- */
 
 // the volume of the particles within radius R of each point (all ranks)
-static void volume_near(LAMMPS *lmp, double **x0, const double *vfrac, int nlocal,
-                        const std::vector<std::array<double, 2>> &pts, double R,
-                        std::vector<double> &vol)
+void PairTLSPHDamage::refresh_tip_cells()
 {
-  std::vector<double> mine(pts.size(), 0.0);
+  RefCells &rc = tip_cells;
+  const int nlocal = atom->nlocal;
+  const std::array<int, 2> stamp = {cache_version, nlocal};
+  if (stamp == rc.stamp) return;
+  rc.stamp = stamp;
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
   for (int i = 0; i < nlocal; i++)
-    for (size_t p = 0; p < pts.size(); p++) {
-      const double dx = x0[i][0] - pts[p][0], dy = x0[i][1] - pts[p][1];
+    for (int d = 0; d < 2; d++) lo[d] = MIN(lo[d], x0c[i][d]), hi[d] = MAX(hi[d], x0c[i][d]);
+  if (nlocal == 0) lo[0] = lo[1] = hi[0] = hi[1] = 0.0;
+  // cells of side h, larger where that would give more cells than 4 per particle
+  double cs = h;
+  const double ncell_max = 4.0 * nlocal + 1024.0;
+  while (((hi[0] - lo[0]) / cs + 1.0) * ((hi[1] - lo[1]) / cs + 1.0) > ncell_max) cs *= 2.0;
+  rc.lo[0] = lo[0], rc.lo[1] = lo[1], rc.cs = cs;
+  rc.nx = (int) ((hi[0] - lo[0]) / cs) + 1;
+  rc.ny = (int) ((hi[1] - lo[1]) / cs) + 1;
+  const int nc = rc.nx * rc.ny;
+  std::vector<int> cell(nlocal);
+  rc.start.assign(nc + 1, 0);
+  for (int i = 0; i < nlocal; i++) {
+    const int cx = MIN(rc.nx - 1, (int) ((x0c[i][0] - lo[0]) / cs));
+    const int cy = MIN(rc.ny - 1, (int) ((x0c[i][1] - lo[1]) / cs));
+    cell[i] = cx + rc.nx * cy;
+    rc.start[cell[i] + 1]++;
+  }
+  for (int c = 0; c < nc; c++) rc.start[c + 1] += rc.start[c];
+  rc.idx.resize(nlocal);
+  std::vector<int> fill(rc.start.begin(), rc.start.end() - 1);
+  for (int i = 0; i < nlocal; i++) rc.idx[fill[cell[i]]++] = i;
+}
+
+void PairTLSPHDamage::particles_in_box(const double *lo, const double *hi, std::vector<int> &out) const
+{
+  const RefCells &rc = tip_cells;
+  out.clear();
+  if (rc.nx == 0 || !(lo[0] <= hi[0]) || !(lo[1] <= hi[1])) return;
+  auto cell_of = [&](double v, int d, int n) {
+    const double f = floor((v - rc.lo[d]) / rc.cs);
+    return (int) MAX(0.0, MIN((double) (n - 1), f));
+  };
+  const int x0 = cell_of(lo[0], 0, rc.nx), x1 = cell_of(hi[0], 0, rc.nx);
+  const int y0 = cell_of(lo[1], 1, rc.ny), y1 = cell_of(hi[1], 1, rc.ny);
+  for (int cy = y0; cy <= y1; cy++)
+    for (int cx = x0; cx <= x1; cx++) {
+      const int c = cx + rc.nx * cy;
+      for (int k = rc.start[c]; k < rc.start[c + 1]; k++) {
+        const int i = rc.idx[k];
+        const double *X = x0c[i];
+        if (X[0] >= lo[0] && X[0] <= hi[0] && X[1] >= lo[1] && X[1] <= hi[1]) out.push_back(i);
+      }
+    }
+  std::sort(out.begin(), out.end());
+}
+
+// the volume of the local particles within R of each point (xy), all ranks
+void PairTLSPHDamage::volume_near(const std::vector<std::array<double, 2>> &pts, double R,
+                                  std::vector<double> &vol)
+{
+  refresh_tip_cells();
+  const double *vfrac = atom->vfrac;
+  std::vector<double> mine(pts.size(), 0.0);
+  std::vector<int> near;
+  for (size_t p = 0; p < pts.size(); p++) {
+    const double lo[2] = {pts[p][0] - R, pts[p][1] - R}, hi[2] = {pts[p][0] + R, pts[p][1] + R};
+    particles_in_box(lo, hi, near);
+    for (int i : near) {
+      const double dx = x0c[i][0] - pts[p][0], dy = x0c[i][1] - pts[p][1];
       if (dx * dx + dy * dy < R * R) mine[p] += vfrac[i];
     }
+  }
   vol.assign(pts.size(), 0.0);
-  MPI_Allreduce(mine.data(), vol.data(), (int) pts.size(), MPI_DOUBLE, MPI_SUM, lmp->world);
+  MPI_Allreduce(mine.data(), vol.data(), (int) pts.size(), MPI_DOUBLE, MPI_SUM, world);
 }
 
 // a pre-crack end is a tip when the body fills at least 3/4 of the disc of
@@ -863,7 +953,7 @@ void PairTLSPHDamage::init_tips()
     tip_depth = g[1] + g[0] + cbrt(g[2]);
   }
   std::vector<double> vol;
-  volume_near(lmp, x0c, atom->vfrac, atom->nlocal, ends, 2.0 * h, vol);
+  volume_near(ends, 2.0 * h, vol);
   const double full = M_PI * 4.0 * h * h * tip_depth;
   for (size_t e = 0; e < ends.size(); e++) {
     if (vol[e] < 0.75 * full) continue;
@@ -887,13 +977,14 @@ void PairTLSPHDamage::init_tips()
 // cut every intact bond of a local particle whose reference segment crosses A -> B
 void PairTLSPHDamage::cut_path(const double *A, const double *B)
 {
-  const int nlocal = atom->nlocal;
   const double reach = family_radius() + std::hypot(B[0] - A[0], B[1] - A[1]);
   const double lo[2] = {MIN(A[0], B[0]) - reach, MIN(A[1], B[1]) - reach};
   const double hi[2] = {MAX(A[0], B[0]) + reach, MAX(A[1], B[1]) + reach};
-  for (int i = 0; i < nlocal; i++) {
+  refresh_tip_cells();
+  std::vector<int> near;
+  particles_in_box(lo, hi, near);
+  for (int i : near) {
     const double *Xi = x0c[i];
-    if (Xi[0] < lo[0] || Xi[0] > hi[0] || Xi[1] < lo[1] || Xi[1] > hi[1]) continue;
     const int s = bond_start[i];
     int *bj = lean.j + s;
     double *bg = lean.g + (bigint) dim * s;
@@ -968,53 +1059,31 @@ void PairTLSPHDamage::grow_tips()
   // kernel-weighted mean displacement on each side (6 sums per sample)
   std::vector<double> mine(nt * NK * 6, 0.0), sums(nt * NK * 6, 0.0);
   double **x = atom->x;
-  const int nlocal = atom->nlocal;
-  // The samples in square bins of side b >= rho (the radius of a sample's
-  // weight; at most 1024 bins a side): a particle visits only the samples of
-  // its own bin and the 8 around it, not every sample of every tip. Each
-  // sample's sums still run over the particles in their order: the same
-  // sums, bit for bit.
+  // Each sample visits the particles of the reference cells within rho of
+  // it (refresh_tip_cells), not every particle: the work grows with the
+  // number of samples, not with the body. Its sums run over the particles in
+  // ascending order, as a sweep over all of them would.
   const int nq = nt * NK;
-  double blo[2] = {INFINITY, INFINITY}, bhi[2] = {-INFINITY, -INFINITY};
-  for (int q = 0; q < nq; q++)
-    if (ok[q])
-      for (int d = 0; d < 2; d++) blo[d] = MIN(blo[d], Q[2 * q + d]), bhi[d] = MAX(bhi[d], Q[2 * q + d]);
-  int nbx = 0, nby = 0;
-  double bs = rho;
-  std::vector<int> bhead, bnext(nq, -1);
-  if (blo[0] <= bhi[0]) {
-    bs = MAX(rho, MAX(bhi[0] - blo[0], bhi[1] - blo[1]) / 1024.0);
-    nbx = (int) ((bhi[0] - blo[0]) / bs) + 1;
-    nby = (int) ((bhi[1] - blo[1]) / bs) + 1;
-    bhead.assign((size_t) nbx * nby, -1);
-    for (int q = nq - 1; q >= 0; q--) {
-      if (!ok[q]) continue;
-      const int b = MIN(nbx - 1, (int) ((Q[2 * q] - blo[0]) / bs)) +
-          nbx * MIN(nby - 1, (int) ((Q[2 * q + 1] - blo[1]) / bs));
-      bnext[q] = bhead[b];
-      bhead[b] = q;
+  refresh_tip_cells();
+  std::vector<int> near;
+  for (int q = 0; q < nq; q++) {
+    if (!ok[q]) continue;
+    const double lo[2] = {Q[2 * q] - rho, Q[2 * q + 1] - rho}, hi[2] = {Q[2 * q] + rho, Q[2 * q + 1] + rho};
+    particles_in_box(lo, hi, near);
+    for (int i : near) {
+      const double *X = x0c[i];
+      const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
+      const double r2 = dx * dx + dy * dy;
+      if (r2 >= rho * rho) continue;
+      const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
+      // + side: to the left of the path (n = t rotated by +90 deg)
+      const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
+      if (dn == 0.0) continue;
+      double *S = mine.data() + 6 * q + (dn > 0.0 ? 0 : 3);
+      S[0] += w;
+      S[1] += w * (x[i][0] - X[0]);
+      S[2] += w * (x[i][1] - X[1]);
     }
-  }
-  for (int i = 0; nbx > 0 && i < nlocal; i++) {
-    const double *X = x0c[i];
-    const double fx = floor((X[0] - blo[0]) / bs), fy = floor((X[1] - blo[1]) / bs);
-    if (fx < -1.0 || fy < -1.0 || fx > nbx || fy > nby) continue;
-    const int ix = (int) fx, iy = (int) fy;
-    for (int cy = MAX(0, iy - 1); cy <= MIN(nby - 1, iy + 1); cy++)
-      for (int cx = MAX(0, ix - 1); cx <= MIN(nbx - 1, ix + 1); cx++)
-        for (int q = bhead[(size_t) cy * nbx + cx]; q >= 0; q = bnext[q]) {
-          const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
-          const double r2 = dx * dx + dy * dy;
-          if (r2 >= rho * rho) continue;
-          const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
-          // + side: to the left of the path (n = t rotated by +90 deg)
-          const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
-          if (dn == 0.0) continue;
-          double *S = mine.data() + 6 * q + (dn > 0.0 ? 0 : 3);
-          S[0] += w;
-          S[1] += w * (x[i][0] - X[0]);
-          S[2] += w * (x[i][1] - X[1]);
-        }
   }
   MPI_Allreduce(mine.data(), sums.data(), nt * NK * 6, MPI_DOUBLE, MPI_SUM, world);
 
@@ -1092,12 +1161,15 @@ void PairTLSPHDamage::grow_tips()
       const double phi0 = atan2(tp.t[1], tp.t[0]);
       for (int j = 0; j < NA; j++) ang[w * NA + j] = phi0 + (j - NA / 2) * dth;
     }
-    for (int i = 0; i < nlocal; i++) {
-      const double *X = x0c[i];
-      bool have = false;
-      double sig[9];
-      for (int w = 0; w < nw; w++) {
-        const auto &P = tips[want[w]].path.back();
+    // each tip's sums over the particles near it, in ascending order
+    for (int w = 0; w < nw; w++) {
+      const auto &P = tips[want[w]].path.back();
+      const double lo[2] = {P[0] - (rs + rh), P[1] - (rs + rh)}, hi[2] = {P[0] + rs + rh, P[1] + rs + rh};
+      particles_in_box(lo, hi, near);
+      for (int i : near) {
+        const double *X = x0c[i];
+        bool have = false;
+        double sig[9];
         const double ex = X[0] - P[0], ey = X[1] - P[1];
         if (ex * ex + ey * ey > (rs + rh) * (rs + rh)) continue;
         for (int j = 0; j < NA; j++) {
@@ -1286,7 +1358,7 @@ void PairTLSPHDamage::grow_tips()
     std::vector<std::array<double, 2>> pts;
     for (int a : moved) pts.push_back(tips[a].path.back());
     std::vector<double> vol;
-    volume_near(lmp, x0c, atom->vfrac, nlocal, pts, h, vol);
+    volume_near(pts, h, vol);
     for (size_t p = 0; p < moved.size(); p++)
       if (vol[p] < 0.4 * M_PI * h * h * tip_depth) {
         tips[moved[p]].alive = 0;

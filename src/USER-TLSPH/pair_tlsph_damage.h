@@ -113,9 +113,28 @@ class PairTLSPHDamage : public PairTLSPH {
   void init_tips();
   void grow_tips();
   void cut_path(const double *A, const double *B);
+  // the local particles in square cells of their reference positions (xy),
+  // so that the tip work visits only the particles near a tip: rebuilt when
+  // the bond cache is (the particle indices change only at neighbor builds)
+  struct RefCells {
+    double lo[2] = {0.0, 0.0}, cs = 1.0;
+    int nx = 0, ny = 0;
+    std::vector<int> start, idx;    // cell c holds idx[start[c] .. start[c + 1]), ascending
+    std::array<int, 2> stamp = {-1, -1};
+  } tip_cells;
+  void refresh_tip_cells();
+  // the local particles whose reference position lies in [lo, hi] (xy), ascending
+  void particles_in_box(const double *lo, const double *hi, std::vector<int> &out) const;
+  void volume_near(const std::vector<std::array<double, 2>> &pts, double R, std::vector<double> &vol);
 
   int nmax_d;
   double *phi, *phis, *alphas;
+  // after_deformation: phi at its last call (local and ghost), the marks of
+  // damaged partners, and whether phis holds the weighted means of the
+  // particles as indexed by phis_stamp (cache version, nlocal, nghost)
+  double *phi_prev, *mark;
+  int phis_valid;
+  std::array<int, 3> phis_stamp;
   int comm_stage;          // forward: 0 packed rows (base), 1 damage phi; 2: reverse, marks
   bigint nbroken_local;    // bonds broken on this rank so far (from this end)
 
