@@ -17,7 +17,7 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixTLSPHVelocityFilter::FixTLSPHVelocityFilter(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), pair(nullptr), nmax(0), vnew(nullptr), nfiltered(0)
+    Fix(lmp, narg, arg), pair(nullptr), nfiltered(0)
 {
   if (narg != 5)
     error->all(FLERR, "fix tlsph/velocity/filter: expected 'fix ID group tlsph/velocity/filter "
@@ -36,10 +36,7 @@ FixTLSPHVelocityFilter::FixTLSPHVelocityFilter(LAMMPS *lmp, int narg, char **arg
   extscalar = 0;
 }
 
-FixTLSPHVelocityFilter::~FixTLSPHVelocityFilter()
-{
-  memory->destroy(vnew);
-}
+FixTLSPHVelocityFilter::~FixTLSPHVelocityFilter() = default;
 
 int FixTLSPHVelocityFilter::setmask()
 {
@@ -58,20 +55,15 @@ void FixTLSPHVelocityFilter::end_of_step()
 {
   // ghosts need the velocities of this step's update
   comm->forward_comm_fix(this);
-  if (atom->nmax > nmax) {
-    memory->destroy(vnew);
-    nmax = atom->nmax;
-    memory->create(vnew, nmax, 3, "tlsph/velocity/filter:vnew");
-  }
   pair->sync_host();    // tlsph/damage/kk: the damage to the host
   double **v = atom->v;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  bigint n = 0;
+  // the new velocities of the filtered particles only (from the old ones of
+  // every partner), written back after the sweep
+  fidx.clear();
+  fvel.clear();
   for (int i = 0; i < nlocal; i++) {
-    vnew[i][0] = v[i][0];
-    vnew[i][1] = v[i][1];
-    vnew[i][2] = v[i][2];
     if (!(mask[i] & groupbit) || !(pair->damage(i) > phi_c)) continue;
     int nb;
     const int *partner = pair->intact_partners(i, nb);
@@ -82,13 +74,12 @@ void FixTLSPHVelocityFilter::end_of_step()
       for (int d = 0; d < 3; d++) s[d] += (v[i][d] - v[j][d]) * W;
       wsum += W;
     }
-    if (wsum > 0.0)
-      for (int d = 0; d < 3; d++) vnew[i][d] = v[i][d] - eps * s[d] / wsum;
-    n++;
+    fidx.push_back(i);
+    for (int d = 0; d < 3; d++) fvel.push_back(wsum > 0.0 ? v[i][d] - eps * s[d] / wsum : v[i][d]);
   }
-  for (int i = 0; i < nlocal; i++)
-    for (int d = 0; d < 3; d++) v[i][d] = vnew[i][d];
-  nfiltered = n;
+  for (size_t k = 0; k < fidx.size(); k++)
+    for (int d = 0; d < 3; d++) v[fidx[k]][d] = fvel[3 * k + d];
+  nfiltered = fidx.size();
 }
 
 int FixTLSPHVelocityFilter::pack_forward_comm(int n, int *list, double *buf, int, int *)

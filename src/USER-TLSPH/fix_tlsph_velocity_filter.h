@@ -20,6 +20,8 @@ FixStyle(tlsph/velocity/filter,FixTLSPHVelocityFilter)
 
 #include "fix.h"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class FixTLSPHVelocityFilter : public Fix {
@@ -36,8 +38,8 @@ class FixTLSPHVelocityFilter : public Fix {
  protected:
   double phi_c, eps;
   class PairTLSPHDamage *pair;
-  int nmax;
-  double **vnew;
+  std::vector<int> fidx;       // the particles filtered in this step
+  std::vector<double> fvel;    // their new velocities (3 each)
   bigint nfiltered;
 };
 

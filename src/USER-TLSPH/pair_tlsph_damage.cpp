@@ -670,6 +670,9 @@ void PairTLSPHDamage::deformation_pass()
    there: the screen then takes every slot within the family's reach. */
 bool PairTLSPHDamage::simd_screen(double &up, double &down, double &reach2) const
 {
+  // 'criterion tip': only the tips cut bonds, no stretch limit is ever
+  // reached (init_style): pass (1) is tlsph's, without the screen
+  if (tipmode) return false;
   constexpr double SIMD_SCREEN_MARGIN = 1.0e-8;
   const int ntp = atom->ntypes + 1;
   up = 1.0e300;
@@ -731,57 +734,68 @@ void PairTLSPHDamage::after_deformation()
   // every reneighboring, 'rebuild' drops them) and, for 'setup', on whether
   // the broken partner is still a ghost -- phi', alpha_i and the trajectory
   // would change with the neighbor skin, a run split or a restart.
+  //
+  // phi' and alpha_i of a particle depend only on its intact bonds and its
+  // partners' damage. Between two rebuilds of the bond cache (the particle
+  // indices are those of the last neighbor build) bonds only break, and a
+  // broken bond changes the damage of both ends. So a step where no rank's
+  // phi changed (one reduction) leaves phi' and alpha_i as they are; else
+  // the particles whose phi changed flag themselves and their intact
+  // partners (ghosts' flags go to their owners by the reverse
+  // communication), and only the flagged ones are evaluated again; after a
+  // rebuild of the cache or at the start of a run, all of them. The same
+  // operations on the same values as evaluating every particle every step:
+  // the same bits. A crack that stands still costs no kernel evaluations.
+  const std::array<int, 3> stamp = {cache_version, nlocal, atom->nghost};
+  const bool full = !phis_valid || stamp != phis_stamp;
+  int lchg = full ? 1 : 0;
   for (int i = 0; i < nlocal; i++) {
     const int n0 = bonds->nintact0[i];
     phi[i] = (n0 > 0) ? 1.0 - (double) nbond[i] / n0 : 0.0;
     if (phi[i] < 0.0) phi[i] = 0.0;
+    if (phi[i] != phi_prev[i]) lchg = 1;
   }
+  int gchg = lchg;
+  if (comm->nprocs > 1) MPI_Allreduce(&lchg, &gchg, 1, MPI_INT, MPI_MAX, world);
+  const int ia = 2 * dim * dim;    // alpha_i in the packed row (TLSPH::Packed::A)
+  if (!gchg) {
+    for (int i = 0; i < nlocal; i++) pk[i][ia] = alphas[i];
+    return;
+  }
+  phis_valid = 1;
+  phis_stamp = stamp;
   comm_stage = 1;
   comm->forward_comm_pair(this);
   comm_stage = 0;
 
-  // phi'_i > 0 exactly when an intact partner of i is damaged. Bonds are
-  // symmetric (both ends decide alike), so the damaged particles, usually a
-  // few, mark their intact partners -- ghosts included, whose marks the
-  // reverse communication adds to their owners -- and only the marked
-  // particles need the weighted mean: no pass over every bond.
+  // the flags (in mark): a particle whose phi changed, and its intact partners
+  double *dirty = mark;
   const int nall = nlocal + atom->nghost;
-  for (int i = 0; i < nall; i++) mark[i] = 0.0;
-  for (int i = 0; i < nlocal; i++) {
-    if (!(phi[i] > 0.0)) continue;
-    const int *bj = lean.j + bond_start[i];
-    for (int m = 0; m < nbond[i]; m++) mark[bj[m]] = 1.0;
+  if (!full) {
+    for (int i = 0; i < nall; i++) dirty[i] = 0.0;
+    for (int i = 0; i < nlocal; i++) {
+      if (phi[i] == phi_prev[i]) continue;
+      dirty[i] = 1.0;
+      const int *bj = lean.j + bond_start[i];
+      for (int m = 0; m < nbond[i]; m++) dirty[bj[m]] = 1.0;
+    }
+    comm_stage = 2;
+    comm->reverse_comm_pair(this);
+    comm_stage = 0;
   }
-  comm_stage = 2;
-  comm->reverse_comm_pair(this);
-  comm_stage = 0;
 
-  // The weighted mean of a marked particle depends only on its intact bonds
-  // and its partners' damage. Between two rebuilds of the bond cache (the
-  // particle indices are those of the last neighbor build) its bonds only
-  // break, and a broken bond changes the damage of both ends; so phi'_i is
-  // recomputed only where phi changed on i or a partner since the last step
-  // (the same operations on the same values: the same bits), and in full
-  // after a rebuild or a new run. A crack that stands still costs no
-  // kernel evaluations.
-  const std::array<int, 3> stamp = {cache_version, nlocal, atom->nghost};
-  const bool full = !phis_valid || stamp != phis_stamp;
-  phis_valid = 1;
-  phis_stamp = stamp;
-  auto changed = [&](int j) { return phi[j] != phi_prev[j]; };
-  // alpha_i in the packed row (TLSPH::Packed::A)
-  const int ia = 2 * dim * dim;
   for (int i = 0; i < nlocal; i++) {
-    if (nbond[i] == 0) {
-      phis[i] = phi[i];    // a free particle: its own damage (1 once it had bonds)
-    } else if (!(mark[i] > 0.0)) {
-      phis[i] = 0.0;    // no damaged intact partner
-    } else {
+    if (full || dirty[i] > 0.0) {
       const int *bj = lean.j + bond_start[i];
       const int n = nbond[i];
-      bool dirty = full || changed(i);
-      for (int m = 0; m < n && !dirty; m++) dirty = changed(bj[m]);
-      if (dirty) {
+      // phi'_i > 0 exactly when an intact partner of i is damaged
+      bool damaged_partner = false;
+      for (int m = 0; m < n && !damaged_partner; m++) damaged_partner = phi[bj[m]] > 0.0;
+      if (n == 0) {
+        phis[i] = phi[i];    // a free particle: its own damage (1 once it had bonds)
+      } else if (!damaged_partner) {
+        phis[i] = 0.0;    // no damaged intact partner
+      } else {
         double num = 0.0, den = 0.0;
         for (int m = 0; m < n; m++) {
           const double w = kernel_value(i, m);
@@ -793,13 +807,13 @@ void PairTLSPHDamage::after_deformation()
         // +-1e-17 where it should be 0, and that would switch alpha_d on
         phis[i] = (den > 0.0) ? num / den : 0.0;
       }
+      // adaptive viscosity (thesis Eq. 2.35: alpha_d wherever phi' > 0; or
+      // 'damping linear': growing with phi' from alpha to alpha_d)
+      alphas[i] = damaged_alpha(phis[i], alpha, alpha_d, damping_linear);
     }
-    // adaptive viscosity (thesis Eq. 2.35: alpha_d wherever phi' > 0; or
-    // 'damping linear': growing with phi' from alpha to alpha_d)
-    alphas[i] = damaged_alpha(phis[i], alpha, alpha_d, damping_linear);
     pk[i][ia] = alphas[i];
+    phi_prev[i] = phi[i];
   }
-  std::copy(phi, phi + nall, phi_prev);
 }
 
 int PairTLSPHDamage::pack_reverse_comm(int n, int first, double *buf)
@@ -977,9 +991,18 @@ void PairTLSPHDamage::init_tips()
 // cut every intact bond of a local particle whose reference segment crosses A -> B
 void PairTLSPHDamage::cut_path(const double *A, const double *B)
 {
-  const double reach = family_radius() + std::hypot(B[0] - A[0], B[1] - A[1]);
+  const double len = std::hypot(B[0] - A[0], B[1] - A[1]);
+  const double reach = family_radius() + len;
   const double lo[2] = {MIN(A[0], B[0]) - reach, MIN(A[1], B[1]) - reach};
   const double hi[2] = {MAX(A[0], B[0]) + reach, MAX(A[1], B[1]) + reach};
+  // a bond whose bounding box misses the path's, grown by half its length,
+  // is not crossed: segment_crossed counts an end within its tolerance of
+  // the other segment's line as on it, which can put the crossing of two
+  // nearly parallel lines up to half the path's length beyond its ends,
+  // never further (so the test below drops only bonds it would not cut)
+  const double pad = 0.5 * len + 1.0e-6 * reach;
+  const double plo[2] = {MIN(A[0], B[0]) - pad, MIN(A[1], B[1]) - pad};
+  const double phi_[2] = {MAX(A[0], B[0]) + pad, MAX(A[1], B[1]) + pad};
   refresh_tip_cells();
   std::vector<int> near;
   particles_in_box(lo, hi, near);
@@ -991,7 +1014,10 @@ void PairTLSPHDamage::cut_path(const double *A, const double *B)
     int n = nbond[i];
     bool changed = false;
     for (int m = 0; m < n;) {
-      if (!segment_crossed(Xi, x0c[bj[m]], A, B)) {
+      const double *Xj = x0c[bj[m]];
+      const bool apart = MAX(Xi[0], Xj[0]) < plo[0] || MIN(Xi[0], Xj[0]) > phi_[0] ||
+          MAX(Xi[1], Xj[1]) < plo[1] || MIN(Xi[1], Xj[1]) > phi_[1];
+      if (apart || !segment_crossed(Xi, Xj, A, B)) {
         m++;
         continue;
       }

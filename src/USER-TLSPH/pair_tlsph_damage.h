@@ -129,13 +129,14 @@ class PairTLSPHDamage : public PairTLSPH {
 
   int nmax_d;
   double *phi, *phis, *alphas;
-  // after_deformation: phi at its last call (local and ghost), the marks of
-  // damaged partners, and whether phis holds the weighted means of the
-  // particles as indexed by phis_stamp (cache version, nlocal, nghost)
+  // after_deformation: phi of the local particles at its last call, the
+  // flags of the particles to evaluate again (local and ghost: reverse
+  // communication), and whether phis holds the values of the particles as
+  // indexed by phis_stamp (cache version, nlocal, nghost)
   double *phi_prev, *mark;
   int phis_valid;
   std::array<int, 3> phis_stamp;
-  int comm_stage;          // forward: 0 packed rows (base), 1 damage phi; 2: reverse, marks
+  int comm_stage;          // forward: 0 packed rows (base), 1 damage phi; 2: reverse, flags
   bigint nbroken_local;    // bonds broken on this rank so far (from this end)
 
   double family_radius() const { return family > 0.0 ? family : 2.0 * h; }
