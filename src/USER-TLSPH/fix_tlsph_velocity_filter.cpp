@@ -68,9 +68,10 @@ void FixTLSPHVelocityFilter::end_of_step()
     int nb;
     const int *partner = pair->intact_partners(i, nb);
     double s[3] = {0, 0, 0}, wsum = 0.0;
+    const double *Wm = pair->kernel_weights(i);
     for (int m = 0; m < nb; m++) {
       const int j = partner[m];
-      const double W = pair->kernel_value(i, m);
+      const double W = Wm[m];
       for (int d = 0; d < 3; d++) s[d] += (v[i][d] - v[j][d]) * W;
       wsum += W;
     }

@@ -433,6 +433,26 @@ double PairTLSPHDamage::kernel_value(int i, int m) const
   return kernel.value(sqrt(dot3(X, X)));
 }
 
+const double *PairTLSPHDamage::kernel_weights(int i)
+{
+  const int nlocal = atom->nlocal;
+  // a new cache (or particles), or segments left behind by broken bonds
+  // outgrowing the cache: start again
+  if (wver != cache_version || (int) wofs.size() < nlocal || wbuf.size() > (size_t) ncache_max + 4096) {
+    wver = cache_version;
+    wofs.assign(nlocal, -1);
+    wlen.assign(nlocal, -1);
+    wbuf.clear();
+  }
+  const int n = nbond[i];
+  if (wofs[i] < 0 || wlen[i] != n) {
+    wofs[i] = (int) wbuf.size();
+    wlen[i] = n;
+    for (int m = 0; m < n; m++) wbuf.push_back(kernel_value(i, m));
+  }
+  return wbuf.data() + wofs[i];
+}
+
 /* ----------------------------------------------------------------------
    pre-cracks: a bond whose reference segment X_i -> X_j crosses a crack
    segment (2D) or parallelogram (3D) is broken before the first step
@@ -797,8 +817,9 @@ void PairTLSPHDamage::after_deformation()
         phis[i] = 0.0;    // no damaged intact partner
       } else {
         double num = 0.0, den = 0.0;
+        const double *W = kernel_weights(i);
         for (int m = 0; m < n; m++) {
-          const double w = kernel_value(i, m);
+          const double w = W[m];
           num += phi[bj[m]] * w;
           den += w;
         }
@@ -890,6 +911,7 @@ void PairTLSPHDamage::particles_in_box(const double *lo, const double *hi, std::
 {
   const RefCells &rc = tip_cells;
   out.clear();
+  out.reserve(64);
   if (rc.nx == 0 || !(lo[0] <= hi[0]) || !(lo[1] <= hi[1])) return;
   auto cell_of = [&](double v, int d, int n) {
     const double f = floor((v - rc.lo[d]) / rc.cs);
@@ -1089,26 +1111,34 @@ void PairTLSPHDamage::grow_tips()
   // it (refresh_tip_cells), not every particle: the work grows with the
   // number of samples, not with the body. Its sums run over the particles in
   // ascending order, as a sweep over all of them would.
-  const int nq = nt * NK;
   refresh_tip_cells();
   std::vector<int> near;
-  for (int q = 0; q < nq; q++) {
-    if (!ok[q]) continue;
-    const double lo[2] = {Q[2 * q] - rho, Q[2 * q + 1] - rho}, hi[2] = {Q[2 * q] + rho, Q[2 * q + 1] + rho};
+  for (int a = 0; a < nt; a++) {
+    // one query for the samples of a tip: the box around all of them
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (int k = 0; k < NK; k++) {
+      const int q = a * NK + k;
+      if (!ok[q]) continue;
+      for (int d = 0; d < 2; d++) lo[d] = MIN(lo[d], Q[2 * q + d] - rho), hi[d] = MAX(hi[d], Q[2 * q + d] + rho);
+    }
     particles_in_box(lo, hi, near);
-    for (int i : near) {
-      const double *X = x0c[i];
-      const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
-      const double r2 = dx * dx + dy * dy;
-      if (r2 >= rho * rho) continue;
-      const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
-      // + side: to the left of the path (n = t rotated by +90 deg)
-      const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
-      if (dn == 0.0) continue;
-      double *S = mine.data() + 6 * q + (dn > 0.0 ? 0 : 3);
-      S[0] += w;
-      S[1] += w * (x[i][0] - X[0]);
-      S[2] += w * (x[i][1] - X[1]);
+    for (int k = 0; k < NK; k++) {
+      const int q = a * NK + k;
+      if (!ok[q]) continue;
+      for (int i : near) {
+        const double *X = x0c[i];
+        const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
+        const double r2 = dx * dx + dy * dy;
+        if (r2 >= rho * rho) continue;
+        const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
+        // + side: to the left of the path (n = t rotated by +90 deg)
+        const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
+        if (dn == 0.0) continue;
+        double *S = mine.data() + 6 * q + (dn > 0.0 ? 0 : 3);
+        S[0] += w;
+        S[1] += w * (x[i][0] - X[0]);
+        S[2] += w * (x[i][1] - X[1]);
+      }
     }
   }
   MPI_Allreduce(mine.data(), sums.data(), nt * NK * 6, MPI_DOUBLE, MPI_SUM, world);

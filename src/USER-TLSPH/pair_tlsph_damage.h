@@ -54,6 +54,10 @@ class PairTLSPHDamage : public PairTLSPH {
   }
   // W(|X_ij|) of bond m of local particle i
   double kernel_value(int i, int m) const;
+  // W(|X_ij|) of the intact bonds of local particle i, in their order (as
+  // kernel_value; kept until a bond of i breaks or the bond cache is
+  // rebuilt). The pointer is valid until the next call.
+  const double *kernel_weights(int i);
   double critical_stretch_of(int type) const { return sc[type]; }
   // 'criterion tip': the crack tips (path vertices, the last one the tip), all ranks
   struct CrackTip {
@@ -135,6 +139,11 @@ class PairTLSPHDamage : public PairTLSPH {
   // indexed by phis_stamp (cache version, nlocal, nghost)
   double *phi_prev, *mark;
   int phis_valid;
+  // kernel_weights: per local particle its segment in wbuf (-1: none) and
+  // its length, for the bond cache of version wver
+  std::vector<int> wofs, wlen;
+  std::vector<double> wbuf;
+  int wver = -1;
   std::array<int, 3> phis_stamp;
   int comm_stage;          // forward: 0 packed rows (base), 1 damage phi; 2: reverse, flags
   bigint nbroken_local;    // bonds broken on this rank so far (from this end)
