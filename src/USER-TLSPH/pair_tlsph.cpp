@@ -599,6 +599,7 @@ void PairTLSPH::init_style()
   select_simd();
   ell_version = -1;
   ell_nrefill = ell_nrelaid = 0;
+  ell_nscreened = ell_nskipped = 0;
   ell_nperm = 0;    // the columns' size follows the packed rows
   report_simd = 1;
   /* the SIMD step keeps the local particles sorted by reference position

@@ -119,6 +119,12 @@ class PairTLSPH : public Pair {
     *lanes = ell_nrefill;
     *relaid = ell_nrelaid;
   }
+  // tlsph/damage: chunks the stretch screen visited, and chunks it could skip, since init
+  void simd_screens(bigint *screened, bigint *skipped) const
+  {
+    *screened = ell_nscreened;
+    *skipped = ell_nskipped;
+  }
   void sort_particles();    // the SIMD step's order of the local particles (its bond fix calls it)
 
   /* the per-particle part of pass (1) for material m (TLSPH::particle_stress_row
@@ -306,7 +312,17 @@ class PairTLSPH : public Pair {
   // step's stress lanes then run, and copy that column afterwards)
   virtual bool alpha_after_deformation() const { return false; }
   std::vector<int> ell_flagged;    // the screen's particles (LAMMPS indices)
+  /* The screen skips the chunks whose bonds cannot have reached a limit
+     since their last full screen (simd_deformation): ell_xref, the
+     positions (columns) at the last full screen of layout ell_screen_of
+     (a count of build_ell), ell_cworst its per-chunk margins, ell_need the
+     chunks to screen this step. */
+  int ell_builds = 0, ell_screen_of = -1;
+  std::vector<double> ell_xref, ell_cworst;
+  std::vector<char> ell_need;
+  bigint ell_nscreened = 0, ell_nskipped = 0;    // chunk screens done and skipped (simd_refills)
   void ell_row_to_columns(int i);
+  void simd_screen_select(TLSPH::EllScreen &scr, int DIM);
   void simd_after_deformation();
   void ell_columns_xv();
   void ell_columns_pk(int k0, int k1);

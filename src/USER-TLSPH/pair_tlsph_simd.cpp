@@ -111,7 +111,32 @@ using ForceFn = void (*)(const EllArrays &, const EllParticles &);
   ATTR void deformation(const EllArrays &e, const EllParticles &p, double *F,               \
                         TLSPH::EllStress *st, TLSPH::EllScreen *scr)                         \
   {                                                                                          \
-    TLSPH_ELL_CHUNKS(PIECES, ELL_D)                                                          \
+    if (!SCREEN || !scr->need) {                                                             \
+      TLSPH_ELL_CHUNKS(PIECES, ELL_D)                                                        \
+      return;                                                                                \
+    }                                                                                        \
+    /* the screen where need says so, the plain pass elsewhere */                           \
+    for (int c = 0; c < e.nchunk; c++) {                                                     \
+      const int first = e.first[c], n = e.n[c];                                              \
+      const bool pat = e.kind[c] == EllArrays::PATTERN;                                      \
+      if (scr->need[c]) {                                                                    \
+        double cw = -1.0e300;                                                                \
+        if (pat) {                                                                           \
+          const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                   \
+          PIECES(n, ELL_DW)                                                                  \
+        } else {                                                                             \
+          const auto sl = TLSPH::lane_slots<DIM>(e, c);                                      \
+          PIECES(n, ELL_DW)                                                                  \
+        }                                                                                    \
+        if (scr->worst) scr->worst[c] = cw;                                                  \
+      } else if (pat) {                                                                      \
+        const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                     \
+        PIECES(n, ELL_D0)                                                                    \
+      } else {                                                                               \
+        const auto sl = TLSPH::lane_slots<DIM>(e, c);                                        \
+        PIECES(n, ELL_D0)                                                                    \
+      }                                                                                      \
+    }                                                                                        \
   }                                                                                          \
   template <int DIM, int ORDER, int HG, int VISC, int MULTI>                                 \
   ATTR void forces(const EllArrays &e, const EllParticles &p)                               \
@@ -120,6 +145,12 @@ using ForceFn = void (*)(const EllArrays &, const EllParticles &);
   }                                                                                          \
   }
 #define ELL_D(w) TLSPH::ell_deformation_stencil<DIM, ORDER, SCREEN, w>(sl, first, h, p, F, st, scr)
+#define ELL_D0(w) TLSPH::ell_deformation_stencil<DIM, ORDER, 0, w>(sl, first, h, p, F, st, scr)
+#define ELL_DW(w)                                                                            \
+  {                                                                                          \
+    ELL_D(w);                                                                                \
+    cw = scr->piece > cw ? scr->piece : cw;                                                  \
+  }
 #define ELL_F(w) TLSPH::ell_force_stencil<DIM, ORDER, HG, VISC, MULTI, w>(sl, first, h, p)
 
 TLSPH_ELL_DRIVERS(ell_portable, , TLSPH_ELL_PIECES2)
@@ -480,6 +511,7 @@ void PairTLSPH::build_ell()
   }
   ell_nblock = b;
   ell_version = cache_version;
+  ell_builds++;
   ell_dirty.clear();    // the layout is the bond cache's as it is now
   if (report_simd) {
     // once per run: how the particles were laid out (rank sums)
@@ -720,6 +752,7 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
   if (screen) {
     if ((int) ell_flagged.size() < nlocal) ell_flagged.resize(nlocal);
     scr.list = ell_flagged.data();
+    simd_screen_select(scr, DIM);
   }
   for (int t = 2; lanes && t <= atom->ntypes; t++)
     lanes = mat[t].lambda == mat[1].lambda && mat[t].mu == mat[1].mu;
@@ -766,6 +799,68 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
     const double *row = pk[i];
     for (int q = 0; q < np; q++) pks[(bigint) q * ns + k] = row[q];
     for (int d = 0; d < DIM; d++) fcol[(bigint) d * ns + k] = fown[i][d];
+  }
+}
+
+/* Which chunks the stretch screen must visit this step. A bond of reference
+   length r0 <= R and length r (r <= sqrt(up) r0 while it holds) has
+   up r0^2 - r^2 = (sqrt(up) r0 - r)(sqrt(up) r0 + r) <= (sqrt(up) r0 - r) 2 sqrt(up) R,
+   so its room to the limit is at least (up r0^2 - r^2) / (2 sqrt(up) R)
+   (the same for the lower limit, r - sqrt(down) r0); and since the full
+   screen its length changed by at most 2 d, d the largest displacement of
+   any particle (local or ghost) since then, less a shift common to all. A
+   chunk whose largest r^2 - up r0^2 at the full screen (ell_cworst) leaves
+   more room than that cannot have a bond at a limit now, and keeps the
+   plain pass. A full screen (every chunk, margins and positions recorded)
+   runs after every build_ell and whenever more than an eighth of the
+   chunks need one. (Test: damage.SimdStep.same_bonds_break_as_scalar_slow_skipping;
+   a bound ten times too small breaks it.) */
+void PairTLSPH::simd_screen_select(TLSPH::EllScreen &scr, int DIM)
+{
+  const int ns = ell_nperm, nall = atom->nlocal + atom->nghost, nc = ell.nchunk;
+  const double *xs = ell_soa;    // DIM columns of x (ell_columns_xv)
+  const double R = std::max(2.0 * h, std::sqrt(scr.reach2)) * (1.0 + 1.0e-6);
+  const double den = 2.0 * std::sqrt(scr.up) * R;
+  bool full = ell_screen_of != ell_builds || (int) ell_cworst.size() < nc;
+  if (!full) {
+    // d: the displacements u since the full screen less any common shift c
+    // (a bond's length changes by at most |u_i - u_j| <= 2 max |u - c|),
+    // c the middle of their range: |u - c| <= |half the range|
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int d = 0; d < DIM; d++) {
+      const double *a = xs + (bigint) d * ns, *b = ell_xref.data() + (bigint) d * ns;
+      for (int k = 0; k < nall; k++) {
+        const double u = a[k] - b[k];
+        lo[d] = u < lo[d] ? u : lo[d];
+        hi[d] = u > hi[d] ? u : hi[d];
+      }
+    }
+    double d2 = 0.0;
+    for (int d = 0; d < DIM && nall > 0; d++) d2 += 0.25 * (hi[d] - lo[d]) * (hi[d] - lo[d]);
+    // the room a chunk needs, with a margin for the round-off of its margins
+    const double need_room = 2.0 * std::sqrt(d2) * (1.0 + 1.0e-6) + 1.0e-6 * R;
+    int n = 0;
+    ell_need.resize(nc);
+    for (int c = 0; c < nc; c++) {
+      ell_need[c] = -ell_cworst[c] / den <= need_room;
+      n += ell_need[c];
+    }
+    if (8 * n > nc) full = true;
+    else {
+      scr.need = ell_need.data();
+      scr.worst = nullptr;
+      ell_nscreened += n;
+      ell_nskipped += nc - n;
+    }
+  }
+  if (full) {
+    ell_screen_of = ell_builds;
+    ell_cworst.assign(nc, 1.0);    // not screened: no room (the driver overwrites)
+    ell_need.assign(nc, 1);
+    scr.need = ell_need.data();
+    scr.worst = ell_cworst.data();
+    ell_xref.assign(xs, xs + (bigint) DIM * ns);
+    ell_nscreened += nc;
   }
 }
 

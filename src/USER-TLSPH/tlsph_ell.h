@@ -109,11 +109,18 @@ struct EllParticles {
    (padded and broken slots have zero weights) or, when the bond family
    reaches beyond the kernel support (whose bonds there have zero weights
    too), when r0^2 < reach2 (0: no such bonds); a padded or broken slot
-   taken so only costs the exact test of its particle. */
+   taken so only costs the exact test of its particle. A step may screen
+   only the chunks that PairTLSPH::simd_deformation cannot prove safe
+   (need), and record the margins of those it screens (worst). */
 struct EllScreen {
   double up, down, reach2;
   int *list;
   int n;
+  // which chunks to screen (null: all), and (non-null) the largest
+  // r^2 - up r0^2 (or down r0^2 - r^2) of each screened chunk's bonds
+  const char *need = nullptr;
+  double *worst = nullptr;
+  double piece = 0.0;    // set by a screened piece: the largest of its lanes
 };
 
 }    // namespace TLSPH

@@ -204,9 +204,14 @@ TLSPH_FORCE_INLINE void ell_deformation_stencil(const Slots &sl, int first, int 
       worst = worst > q ? worst : q;
     }
   }
-  if (SCREEN)
-    for (int l = 0; l < W; l++)
+  if (SCREEN) {
+    double pw = -1.0e300;
+    for (int l = 0; l < W; l++) {
       if (worst[l] >= 0.0) scr->list[scr->n++] = p.perm[i0 + l];
+      pw = worst[l] > pw ? worst[l] : pw;
+    }
+    scr->piece = pw;
+  }
   if (st) {
     ell_stress_lanes<DIM, ORDER, W>(Fa, i0, p, *st);
     return;

@@ -1513,6 +1513,7 @@ struct SimdRun {
   int simd = 0;
   int pattern_particles0 = 0;    // before the run
   long refills = 0, relaid = 0;  // lanes re-filled, pattern chunks re-laid
+  long screened = 0, skipped = 0;  // chunks the stretch screen visited / proved safe
   double broken = 0.0;                                   // intact bond ends lost
 };
 
@@ -1535,6 +1536,9 @@ SimdRun simd_run(const std::function<std::string(const std::string &)> &script,
   LAMMPS_NS::bigint refills, relaid;
   pair->simd_refills(&refills, &relaid);
   r.refills = refills, r.relaid = relaid;
+  LAMMPS_NS::bigint screened, skipped;
+  pair->simd_screens(&screened, &skipped);
+  r.screened = screened, r.skipped = skipped;
   const Columns cols = damage_columns(lmp);
   r.broken = intact0 - total_intact(cols);
   Atom *atom = lmp->atom;
@@ -1563,7 +1567,7 @@ std::array<double, 2> trajectory_difference(const SimdRun &a, const SimdRun &b)
 }
 
 void simd_damage_test(const std::function<std::string(const std::string &)> &script, int nsteps,
-                      double length)
+                      double length, bool skips = false)
 {
   const SimdRun ref = simd_run(script, "no", true, nsteps);
   const SimdRun gather = simd_run(script, "no", false, nsteps);
@@ -1583,11 +1587,13 @@ void simd_damage_test(const std::function<std::string(const std::string &)> &scr
     auto diff = trajectory_difference(ref, r);
     diff[0] /= length;
     printf("simd %s: |dx|/L %.3g, |dv|/vmax %.3g; %d particles in pattern chunks at the start; "
-           "%ld lanes re-filled, %ld pattern chunks re-laid\n", LAMMPS_NS::PairTLSPH::simd_name(isa),
-           diff[0], diff[1], r.pattern_particles0, r.refills, r.relaid);
+           "%ld lanes re-filled, %ld pattern chunks re-laid; stretch screen: %ld chunks visited, "
+           "%ld skipped\n", LAMMPS_NS::PairTLSPH::simd_name(isa),
+           diff[0], diff[1], r.pattern_particles0, r.refills, r.relaid, r.screened, r.skipped);
     EXPECT_GT(r.pattern_particles0, 0) << "no pattern chunks: their re-laying is not exercised";
     EXPECT_GT(r.relaid, 0) << "no pattern chunk was re-laid";
     EXPECT_GT(r.refills, r.relaid) << "no lane of a stencil chunk was re-filled";
+    if (skips) EXPECT_GT(r.skipped, 1000) << "the screen's skipping is not exercised";
     int differ = 0;
     for (const auto &kv : ref.atoms)
       if (kv.second[6] != r.atoms.at(kv.first)[6]) differ++;
@@ -1630,6 +1636,47 @@ run 0
 }
 
 }    // namespace
+
+// a pre-cracked plate pulled apart by grips at its edges (and drifting): the
+// stretch screen proves most chunks safe for many steps before bonds reach
+// the limit (the skipped chunks must not miss a break)
+std::string slow_plate(const std::string &word)
+{
+  return R"(units si
+dimension 2
+boundary s s p
+atom_style peri
+atom_modify map array
+lattice sq 0.001 origin 0.5 0.5 0.0
+region box block 0 30 0 12 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+set type 1 volume 1e-6
+set type 1 mass 7.8e-3
+pair_style tlsph/damage h 0.00133 alpha 1.0 alpha_d 2.0 gamma 1.0 precrack -0.001 0.006 0.0123 0.006 simd )" +
+      word + R"(
+pair_coeff 1 1 E 210e9 nu 0.3 rho 7800 sc 0.002
+region top block INF INF 10.9 INF INF INF
+region bot block INF INF INF 1.1 INF INF
+group top region top
+group bot region bot
+group grips union top bot
+velocity all set 5.0 0 0 units box
+velocity top set 5.0 2.0 0 units box
+velocity bot set 5.0 -2.0 0 units box
+fix 1 all nve
+fix 2 grips setforce 0 0 0
+compute dmg all tlsph/damage/atom
+timestep 5e-8
+thermo 1000
+run 0
+)";
+}
+
+TEST(SimdStep, same_bonds_break_as_scalar_slow_skipping)
+{
+  simd_damage_test(slow_plate, 800, 0.03, true);
+}
 
 TEST(SimdStep, same_bonds_break_as_scalar_rebuild)
 {
