@@ -1593,7 +1593,9 @@ void simd_damage_test(const std::function<std::string(const std::string &)> &scr
     EXPECT_GT(r.pattern_particles0, 0) << "no pattern chunks: their re-laying is not exercised";
     EXPECT_GT(r.relaid, 0) << "no pattern chunk was re-laid";
     EXPECT_GT(r.refills, r.relaid) << "no lane of a stencil chunk was re-filled";
-    if (skips) EXPECT_GT(r.skipped, 1000) << "the screen's skipping is not exercised";
+    if (skips) {
+      EXPECT_GT(r.skipped, 1000) << "the screen's skipping is not exercised";
+    }
     int differ = 0;
     for (const auto &kv : ref.atoms)
       if (kv.second[6] != r.atoms.at(kv.first)[6]) differ++;
