@@ -322,7 +322,7 @@ class PairTLSPH : public Pair {
   std::vector<char> ell_need;
   bigint ell_nscreened = 0, ell_nskipped = 0;    // chunk screens done and skipped (simd_refills)
   void ell_row_to_columns(int i);
-  void simd_screen_select(TLSPH::EllScreen &scr, int DIM);
+  void simd_screen_select(TLSPH::EllScreen &scr);
   void simd_after_deformation();
   void ell_columns_xv();
   void ell_columns_pk(int k0, int k1);

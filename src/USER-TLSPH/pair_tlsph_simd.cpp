@@ -93,8 +93,9 @@ using ForceFn = void (*)(const EllArrays &, const EllParticles &);
   }
 
 // every chunk, in order, its lanes in PIECES of vector widths, each piece a CALL
-#define TLSPH_ELL_CHUNKS(PIECES, CALL)                                                       \
-  for (int c = 0; c < e.nchunk; c++) {                                                       \
+// chunk c's lanes in PIECES of vector widths, each piece a CALL
+#define TLSPH_ELL_CHUNK(c, PIECES, CALL)                                                     \
+  {                                                                                          \
     const int first = e.first[c], n = e.n[c];                                                \
     if (e.kind[c] == EllArrays::PATTERN) {                                                   \
       const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                       \
@@ -104,6 +105,9 @@ using ForceFn = void (*)(const EllArrays &, const EllParticles &);
       PIECES(n, CALL)                                                                        \
     }                                                                                        \
   }
+// every chunk, in order
+#define TLSPH_ELL_CHUNKS(PIECES, CALL)                                                       \
+  for (int c = 0; c < e.nchunk; c++) TLSPH_ELL_CHUNK(c, PIECES, CALL)
 // the drivers (one copy per instruction set)
 #define TLSPH_ELL_DRIVERS(NS, ATTR, PIECES)                                                  \
   namespace NS {                                                                             \
@@ -117,25 +121,12 @@ using ForceFn = void (*)(const EllArrays &, const EllParticles &);
     }                                                                                        \
     /* the screen where need says so, the plain pass elsewhere */                           \
     for (int c = 0; c < e.nchunk; c++) {                                                     \
-      const int first = e.first[c], n = e.n[c];                                              \
-      const bool pat = e.kind[c] == EllArrays::PATTERN;                                      \
       if (scr->need[c]) {                                                                    \
         double cw = -1.0e300;                                                                \
-        if (pat) {                                                                           \
-          const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                   \
-          PIECES(n, ELL_DW)                                                                  \
-        } else {                                                                             \
-          const auto sl = TLSPH::lane_slots<DIM>(e, c);                                      \
-          PIECES(n, ELL_DW)                                                                  \
-        }                                                                                    \
+        TLSPH_ELL_CHUNK(c, PIECES, ELL_DW)                                                   \
         if (scr->worst) scr->worst[c] = cw;                                                  \
-      } else if (pat) {                                                                      \
-        const auto sl = TLSPH::pattern_slots<DIM>(e, c);                                     \
-        PIECES(n, ELL_D0)                                                                    \
-      } else {                                                                               \
-        const auto sl = TLSPH::lane_slots<DIM>(e, c);                                        \
-        PIECES(n, ELL_D0)                                                                    \
-      }                                                                                      \
+      } else                                                                                 \
+        TLSPH_ELL_CHUNK(c, PIECES, ELL_D0)                                                   \
     }                                                                                        \
   }                                                                                          \
   template <int DIM, int ORDER, int HG, int VISC, int MULTI>                                 \
@@ -752,7 +743,7 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
   if (screen) {
     if ((int) ell_flagged.size() < nlocal) ell_flagged.resize(nlocal);
     scr.list = ell_flagged.data();
-    simd_screen_select(scr, DIM);
+    simd_screen_select(scr);
   }
   for (int t = 2; lanes && t <= atom->ntypes; t++)
     lanes = mat[t].lambda == mat[1].lambda && mat[t].mu == mat[1].mu;
@@ -815,8 +806,9 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
    runs after every build_ell and whenever more than an eighth of the
    chunks need one. (Test: damage.SimdStep.same_bonds_break_as_scalar_slow_skipping;
    a bound ten times too small breaks it.) */
-void PairTLSPH::simd_screen_select(TLSPH::EllScreen &scr, int DIM)
+void PairTLSPH::simd_screen_select(TLSPH::EllScreen &scr)
 {
+  const int DIM = dim;
   const int ns = ell_nperm, nall = atom->nlocal + atom->nghost, nc = ell.nchunk;
   const double *xs = ell_soa;    // DIM columns of x (ell_columns_xv)
   const double R = std::max(2.0 * h, std::sqrt(scr.reach2)) * (1.0 + 1.0e-6);

@@ -617,10 +617,8 @@ namespace {
 
 const char *const PLATE_VISC = "alpha 0.5 alpha_d 2.0 gamma 1.0";
 
-std::string free_plate(const std::string &pair_extra, const std::string &fixes = "",
-                       const std::string &visc = PLATE_VISC)
-{
-  return R"(units si
+// the 30 x 12 steel plate of dx = 1 mm (2D) up to its pair style
+const char *const PLATE = R"(units si
 dimension 2
 boundary s s p
 atom_style peri
@@ -631,7 +629,12 @@ create_box 1 box
 create_atoms 1 box
 set type 1 volume 1e-6
 set type 1 mass 7.8e-3
-pair_style tlsph/damage h 0.00133 precrack -0.001 0.006 0.0123 0.006 )" +
+)";
+
+std::string free_plate(const std::string &pair_extra, const std::string &fixes = "",
+                       const std::string &visc = PLATE_VISC)
+{
+  return std::string(PLATE) + R"(pair_style tlsph/damage h 0.00133 precrack -0.001 0.006 0.0123 0.006 )" +
       visc + " " + pair_extra + R"(
 pair_coeff 1 1 E 210e9 nu 0.3 rho 7800 sc 0.004
 variable vx atom 7.0+2.0*sin(x/0.003)
@@ -1644,18 +1647,7 @@ run 0
 // the limit (the skipped chunks must not miss a break)
 std::string slow_plate(const std::string &word)
 {
-  return R"(units si
-dimension 2
-boundary s s p
-atom_style peri
-atom_modify map array
-lattice sq 0.001 origin 0.5 0.5 0.0
-region box block 0 30 0 12 -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-set type 1 volume 1e-6
-set type 1 mass 7.8e-3
-pair_style tlsph/damage h 0.00133 alpha 1.0 alpha_d 2.0 gamma 1.0 precrack -0.001 0.006 0.0123 0.006 simd )" +
+  return std::string(PLATE) + R"(pair_style tlsph/damage h 0.00133 alpha 1.0 alpha_d 2.0 gamma 1.0 precrack -0.001 0.006 0.0123 0.006 simd )" +
       word + R"(
 pair_coeff 1 1 E 210e9 nu 0.3 rho 7800 sc 0.002
 region top block INF INF 10.9 INF INF INF
