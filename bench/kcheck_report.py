@@ -13,7 +13,11 @@ import os
 import re
 import sys
 
-out, commit, dxs = sys.argv[1], sys.argv[2], sys.argv[3:]
+rings_only = len(sys.argv) > 1 and sys.argv[1] == "--rings"
+if rings_only:
+    out, commit, dxs = sys.argv[2], "", []
+else:
+    out, commit, dxs = sys.argv[1], sys.argv[2], sys.argv[3:]
 A, W, LOAD = 0.005, 0.08, 1.0e6
 lam = A / (W / 2)
 F = (1 - 0.025 * lam ** 2 + 0.06 * lam ** 4) * math.sqrt(1 / math.cos(math.pi * lam / 2))
@@ -40,6 +44,23 @@ def rows(path):
     return r
 
 
+if rings_only:
+    # kfit j's ring scan at dx = 0.5 mm (logs kring-R1-R2-MODE.log; the
+    # model's ring 2 4 is the main table's run k-j-MODE-0.0005.log)
+    print("| r1 / h | r2 / h | mode I: K / reference | mode II: K / reference |")
+    print("|---:|---:|---:|---:|")
+    for ring in os.environ.get("JRINGS", "2,4").split():
+        r1, r2 = ring.split(",")
+        cells = []
+        for mode, col in (("I", 2), ("II", 3)):
+            p = "%s/kring-%s-%s-%s.log" % (out, r1, r2, mode)
+            if ring == "2,4":
+                p = "%s/k-j-%s-0.0005.log" % (out, mode)
+            r = rows(p)
+            cells.append("%.4f" % (0.5 * (abs(r[-1][col]) + abs(r[-1][col + 2])) / K0) if r else "run failed")
+        print("| %s | %s | %s | %s |" % (r1, r2, cells[0], cells[1]))
+    sys.exit(0)
+
 cpu = "?"
 try:
     cpu = next(l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name"))
@@ -53,7 +74,9 @@ print("- bench/in.kcheck: central crack 2a = %g mm on y = 0 in a %g x %g mm glas
       "G_c 1e9 J/m^2 (nothing grows), remote tension (mode I) or shear (mode II) of %g MPa as edge "
       "tractions, fix tlsph/relax; K from compute tlsph/crack/tips at the end (8 report intervals of "
       "about one wave transit each); kfit tip: the fit anchored at the path's end (the default), "
-      "kfit offset: the tip's effective position fitted too (tlsph_crack.h)" % (2e3 * A, 1e3 * W, 1e3 * W, LOAD / 1e6))
+      "kfit offset: the tip's effective position fitted too; kfit j: the size of K from the domain "
+      "J-integral over the ring 2h-4h about the tip (jring 2 4), the mode ratio from the anchored fit "
+      "(tlsph_crack.h)" % (2e3 * A, 1e3 * W, 1e3 * W, LOAD / 1e6))
 print("- reference: K = load sqrt(pi a) F(a/b) = %.1f Pa m^0.5 (F = %.4f, a/b = %.3f; Tada's "
       "finite-width factor, the same for mode II)\n" % (K0, F, lam))
 print("| gamma | kfit | mode | dx [mm] | a / h | K, tip 1 | K, tip 2 | K / reference | error | other mode's "

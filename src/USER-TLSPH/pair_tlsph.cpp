@@ -1372,6 +1372,16 @@ void PairTLSPH::cauchy_stress(int i, double *sigma) const
   else cauchy(IsotropicSVK{m.lambda, m.mu, dim == 2 ? plane_stress : 0});
 }
 
+double PairTLSPH::pk1_stress(int i, double *Fi, double *Pi) const
+{
+  const Material &m = mat[atom->type[i]];
+  // Fi: 3 x 3 with F33 = 1 in 2D (plane stress: set here from E33)
+  double J;
+  if (m.orthotropic) return stress_tensors(m.ortho_law, dim, Fi, Pi, nullptr, &J);
+  return stress_tensors(IsotropicSVK{m.lambda, m.mu, dim == 2 ? plane_stress : 0}, dim, Fi, Pi,
+                        nullptr, &J);
+}
+
 void PairTLSPH::green_lagrange_strain(int i, double *E) const
 {
   const Material &m = mat[atom->type[i]];

@@ -69,6 +69,10 @@ class PairTLSPH : public Pair {
   void cauchy_stress(int i, double *sigma) const;
   void green_lagrange_strain(int i, double *E) const;
   const double *deformation_gradient(int i) const { return F[i]; }
+  // the first Piola-Kirchhoff stress P of particle i's law at the deformation
+  // gradient F (3 x 3; F33 = 1 in 2D, set from E33 in plane stress); returns
+  // the strain energy density
+  double pk1_stress(int i, double *F, double *P) const;
   double strain_energy_density(int i) const { return psi[i]; }
   // the hourglass energy of particle i (its share of E_hg) with the
   // conservative form; 0 with the thesis's (its work is tallied by the bond fix)

@@ -72,6 +72,8 @@ void PairTLSPHDamage::settings(int narg, char **arg)
   tip_branch = 0.0;
   tip_hoop = 0;
   tip_kfit = 0;
+  tip_jr1 = 2.0;
+  tip_jr2 = 4.0;
   tip_seg = 0.0;
   bool have_branch = false;
   rebuild = 0;    // 'setup' (the thesis): measured better on Kalthoff-Winkler, see doc
@@ -110,10 +112,22 @@ void PairTLSPHDamage::settings(int narg, char **arg)
       have_branch = true;
       if (strcmp(arg[iarg + 1], "tip") == 0) tip_kfit = 0;
       else if (strcmp(arg[iarg + 1], "offset") == 0) tip_kfit = 1;
+      else if (strcmp(arg[iarg + 1], "j") == 0) tip_kfit = 2;
       else
-        error->all(FLERR, "pair_style tlsph/damage: kfit must be 'tip' or 'offset', got '{}'",
+        error->all(FLERR, "pair_style tlsph/damage: kfit must be 'tip', 'offset' or 'j', got '{}'",
                    arg[iarg + 1]);
       iarg += 2;
+    } else if (key == "jring") {
+      if (iarg + 2 >= narg)
+        error->all(FLERR, "pair_style tlsph/damage: jring needs two values (the J domain's inner "
+                          "and outer radius in h)");
+      tip_jr1 = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
+      tip_jr2 = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 2]);
+      if (!(tip_jr1 >= 0.0 && tip_jr2 > tip_jr1 && tip_jr2 < 1.0e3))
+        error->all(FLERR, "pair_style tlsph/damage: jring must be two radii in h with 0 <= r1 < "
+                          "r2, got {} {}", arg[iarg + 1], arg[iarg + 2]);
+      have_branch = true;
+      iarg += 3;
     } else if (key == "tipseg") {
       if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: tipseg needs a value");
       tip_seg = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
@@ -183,8 +197,8 @@ void PairTLSPHDamage::settings(int narg, char **arg)
     }
   }
   if (have_branch && !tipmode)
-    error->all(FLERR, "pair_style tlsph/damage: branch, tipdir, tipseg and kfit are settings of "
-                      "'criterion tip'");
+    error->all(FLERR, "pair_style tlsph/damage: branch, tipdir, tipseg, kfit and jring are "
+                      "settings of 'criterion tip'");
   PairTLSPH::settings((int) base.size(), base.data());
   // the thesis's fracture model uses the linear correction: keep it the default
   if (!have_gradient) order = 1;
@@ -264,11 +278,15 @@ void PairTLSPHDamage::write_restart_settings(FILE *fp)
   fwrite(v, sizeof(double), 6, fp);
   for (const auto &c : cracks) fwrite(c.data(), sizeof(double), 9, fp);
   // 'criterion tip': the settings, then every tip with its path (identical on all ranks)
-  // tipdir and kfit share one value (files written before kfit read as kfit tip)
-  double w[6] = {(double) tipmode, (double) (tip_hoop + 2 * tip_kfit), tip_seg, tip_branch,
+  // tipdir and kfit share one value (files written before kfit read as kfit tip);
+  // tipmode + 2 marks the layout with the J ring after these six (files
+  // written before it have tipmode 0 or 1 there and the default ring)
+  double w[6] = {(double) tipmode + 2.0, (double) (tip_hoop + 2 * tip_kfit), tip_seg, tip_branch,
                  (double) tips_ready,
                  (double) tips.size()};
   fwrite(w, sizeof(double), 6, fp);
+  const double jr[2] = {tip_jr1, tip_jr2};
+  fwrite(jr, sizeof(double), 2, fp);
   for (const auto &tp : tips) {
     std::vector<double> r = {(double) tp.path.size(), tp.t[0], tp.t[1], tp.seg, tp.own,
                              (double) tp.alive, (double) tp.growing};
@@ -304,7 +322,9 @@ void PairTLSPHDamage::read_restart_settings(FILE *fp)
   double w[6];
   if (comm->me == 0) utils::sfread(FLERR, w, sizeof(double), 6, fp, nullptr, error);
   MPI_Bcast(w, 6, MPI_DOUBLE, 0, world);
-  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 3.0 && w[1] == std::floor(w[1])) &&
+  const bool with_ring = (w[0] >= 2.0);
+  if (with_ring) w[0] -= 2.0;
+  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 5.0 && w[1] == std::floor(w[1])) &&
         w[2] >= 0.0 &&
         w[3] < 2.0 && (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 && w[5] == std::floor(w[5]) &&
         w[5] < 1.0e7))
@@ -313,6 +333,18 @@ void PairTLSPHDamage::read_restart_settings(FILE *fp)
   tipmode = static_cast<int>(w[0]);
   tip_hoop = static_cast<int>(w[1]) % 2;
   tip_kfit = static_cast<int>(w[1]) / 2;
+  tip_jr1 = 2.0;
+  tip_jr2 = 4.0;
+  if (with_ring) {
+    double jr[2];
+    if (comm->me == 0) utils::sfread(FLERR, jr, sizeof(double), 2, fp, nullptr, error);
+    MPI_Bcast(jr, 2, MPI_DOUBLE, 0, world);
+    if (!(jr[0] >= 0.0 && jr[1] > jr[0] && jr[1] < 1.0e3))
+      error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
+                        "version's layout (written by another version of the package?)");
+    tip_jr1 = jr[0];
+    tip_jr2 = jr[1];
+  }
   tip_seg = w[2];
   tip_branch = w[3];
   tips_ready = static_cast<int>(w[4]);
@@ -397,6 +429,8 @@ void PairTLSPHDamage::init_style()
     tip_Eprime = plane_stress ? m.E : m.E / (1.0 - m.nu * m.nu);
     tip_Gc = Gc[1];
     tip_cR = sqrt(m.mu / m.rho) * (0.862 + 1.14 * m.nu) / (1.0 + m.nu);
+    // kfit j: the velocity gradient of the J-integral reads the ghosts' velocities
+    if (tip_kfit == 2) comm->ghost_velocity = 1;
   }
   comm_forward = MAX(comm_forward, 1);
   comm_reverse = MAX(comm_reverse, 1);
@@ -1059,6 +1093,81 @@ void PairTLSPHDamage::cut_path(const double *A, const double *B)
   }
 }
 
+/* kfit j: the domain J-integral (tlsph_crack.h, j_integrand) of each tip in
+   'live', over the particles whose reference position lies within
+   tip_jr2 h of the tip (a cylinder through the thickness in 3D), per unit
+   depth, all ranks. Each particle's F and velocity gradient come from its
+   intact bonds and the positions and velocities now (the F of the last
+   deformation pass is a step old and, at a neighbor build, another atom's),
+   P and W from its law; its acceleration is the change of its velocity since
+   the last step (none for a particle not visited then). The sums run over
+   the particles in ascending order. */
+void PairTLSPHDamage::tip_j_integrals(const std::vector<int> &live, std::vector<double> &J)
+{
+  const int nt = live.size();
+  std::vector<double> mine(nt, 0.0);
+  J.assign(nt, 0.0);
+  double **x = atom->x, **v = atom->v;
+  const double *vfrac = atom->vfrac, *rmass = atom->rmass;
+  const tagint *tag = atom->tag;
+  const bigint step = update->ntimestep;
+  const double dt = update->dt;
+  const double r1 = tip_jr1 * h, r2 = tip_jr2 * h;
+  if ((int) jprev.size() < atom->nmax) jprev.resize(atom->nmax, JPrev{{0.0, 0.0, 0.0}, -1, -1});
+  const auto xr = TLSPH::StridedRows{x[0], 3};
+  std::vector<int> near, seen;
+  for (int a = 0; a < nt; a++) {
+    const CrackTip &tp = tips[live[a]];
+    const auto &T = tp.path.back();
+    const double e[3] = {tp.t[0], tp.t[1], 0.0};
+    const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
+    particles_in_box(lo, hi, near);
+    for (int i : near) {
+      const double ex = x0c[i][0] - T[0], ey = x0c[i][1] - T[1];
+      const double r = std::sqrt(ex * ex + ey * ey);
+      if (r >= r2) continue;
+      seen.push_back(i);
+      double dq;
+      const double q = TLSPH::ring_weight(r, r1, r2, &dq);
+      const double gq[3] = {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, 0.0};
+      double F[9], P[9], L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+      const int nb = nbond[i];
+      const int *pj;
+      const double *pg;
+      if (dim == 2) {
+        const auto b = bonds_of<2>(i);
+        TLSPH::deformation_gradient_bonds<2>(xr, i, b, nb, F);
+        pj = b.j, pg = b.g;
+      } else {
+        const auto b = bonds_of<3>(i);
+        TLSPH::deformation_gradient_bonds<3>(xr, i, b, nb, F);
+        pj = b.j, pg = b.g;
+      }
+      for (int m = 0; m < nb; m++) {
+        const double *vj = v[pj[m]], *g = pg + dim * m;
+        for (int rr = 0; rr < 3; rr++)
+          for (int c = 0; c < dim; c++) L[3 * rr + c] += (vj[rr] - v[i][rr]) * g[c];
+      }
+      const double W = pk1_stress(i, F, P);
+      const double rho0 = rmass[i] / vfrac[i];
+      double acc[3] = {0.0, 0.0, 0.0};
+      const JPrev &pv = jprev[i];
+      if (q != 0.0 && pv.tag == tag[i] && pv.step == step - 1 && dt > 0.0)
+        for (int d = 0; d < 3; d++) acc[d] = (v[i][d] - pv.v[d]) / dt;
+      mine[a] += vfrac[i] * TLSPH::j_integrand(F, P, W, rho0, v[i], acc, L, e, gq, q);
+    }
+  }
+  // this step's velocities, for the next step's accelerations
+  for (int i : seen) {
+    JPrev &pv = jprev[i];
+    for (int d = 0; d < 3; d++) pv.v[d] = v[i][d];
+    pv.tag = tag[i];
+    pv.step = step;
+  }
+  MPI_Allreduce(mine.data(), J.data(), nt, MPI_DOUBLE, MPI_SUM, world);
+  for (double &j : J) j /= tip_depth;
+}
+
 /* Each step, for every live tip: the stress intensity factors from the
    displacement jump across the faces behind it (displacement correlation:
    du = 8 K sqrt(r / 2 pi) / E', sampled at r = 2h .. 5h along its path and
@@ -1142,6 +1251,16 @@ void PairTLSPHDamage::grow_tips()
     }
   }
   MPI_Allreduce(mine.data(), sums.data(), nt * NK * 6, MPI_DOUBLE, MPI_SUM, world);
+  // kfit j: the energy release rate of each live tip (the domain J-integral)
+  std::vector<double> Jt(nt, 0.0);
+  if (tip_kfit == 2) {
+    std::vector<int> live;
+    for (int a = 0; a < nt; a++)
+      if (tips[a].alive) live.push_back(a);
+    std::vector<double> Jl;
+    tip_j_integrals(live, Jl);
+    for (size_t k = 0; k < live.size(); k++) Jt[live[k]] = Jl[k];
+  }
 
   const double dt = update->dt;
   // per tip: G of the maximum tangential stress direction, and the direction
@@ -1171,8 +1290,12 @@ void PairTLSPHDamage::grow_tips()
     if (cnt == 0) continue;
     // K_I, K_II (displacement correlation), the kink angle and the
     // equivalent K of the maximum tangential stress (tlsph_crack.h)
-    const TLSPH::CrackK K = tip_kfit ? TLSPH::displacement_correlation_offset(cnt, rr, jn, jt, tip_Eprime)
-                                     : TLSPH::displacement_correlation(cnt, rr, jn, jt, tip_Eprime);
+    // (kfit j: their size from J, their ratio from the correlation)
+    const TLSPH::CrackK K = tip_kfit == 1
+        ? TLSPH::displacement_correlation_offset(cnt, rr, jn, jt, tip_Eprime)
+        : tip_kfit == 2
+        ? TLSPH::k_from_j(Jt[a], TLSPH::displacement_correlation(cnt, rr, jn, jt, tip_Eprime), tip_Eprime)
+        : TLSPH::displacement_correlation(cnt, rr, jn, jt, tip_Eprime);
     const double KI = K.KI, KII = K.KII;
     const double th = TLSPH::mts_kink_angle(KI, KII);
     const double Keq = TLSPH::mts_equivalent_K(KI, KII, th);

@@ -108,7 +108,18 @@ class PairTLSPHDamage : public PairTLSPH {
   // of motion, cutting the bonds its path crosses (no other bond breaks)
   int tipmode;
   int tip_hoop;         // direction: 0 kink angle from K_I, K_II, 1 largest hoop stress
-  int tip_kfit;         // K: 0 fit anchored at the path's end, 1 with the tip's offset fitted
+  int tip_kfit;         // K: 0 fit anchored at the path's end, 1 with the tip's offset fitted,
+                        // 2 size from the domain J-integral (ratio: fit 0)
+  double tip_jr1, tip_jr2;    // kfit j: the J domain's ring, q = 1 inside r1, 0 beyond r2 [h]
+  // kfit j: each visited particle's velocity at the last step (the
+  // acceleration of the J-integral's inertia term), its tag and step
+  struct JPrev {
+    double v[3];
+    tagint tag;
+    bigint step;
+  };
+  std::vector<JPrev> jprev;
+  void tip_j_integrals(const std::vector<int> &live, std::vector<double> &J);
   double tip_seg;       // segment length in h (0: the sampling reach)
   double tip_branch;    // half angle of a branching [rad] (0: tips never branch)
   std::vector<CrackTip> tips;

@@ -123,6 +123,70 @@ inline double mts_equivalent_K(double KI, double KII, double theta)
   return c2 * (KI * c2 * c2 - 1.5 * KII * std::sin(theta));
 }
 
+/* The energy release rate by the domain form of the dynamic J-integral
+   (Moran & Shih 1987; Shih, Moran & Nakamura 1986), written in the
+   reference configuration (total Lagrangian: P the first Piola-Kirchhoff
+   stress, H = F - I the displacement gradient, W the strain energy and
+   T = rho0 |v|^2 / 2 the kinetic energy per reference volume):
+     J = int_A [P_iJ H_iK e_K - (W + T) e_J] q_,J dA
+       + int_A rho0 [a_i H_iK e_K - v_i L_iK e_K] q dA
+   e the crack's direction at the tip, a the acceleration, L = dv/dX, and q
+   a weight that is 1 at the tip and 0 on the domain's outer edge (here 1
+   inside r1, linear in r to 0 at r2). The faces inside the domain carry
+   no traction, so no line integral remains. The second integral is zero
+   for a static field, and for a crack running steadily (the field moves
+   with the tip: v = -V u_,1, a = V^2 u_,11); it is the inertia of a field
+   that changes as it moves. For a particle method A is a sum over the
+   particles' volumes; the integrand of one particle is
+   j_integrand(...) (3 x 3 row-major tensors, z rows and columns zero in
+   2D but F_33). In linear elasticity J = (K_I^2 + K_II^2) / E' for a crack
+   at rest. */
+inline double ring_weight(double r, double r1, double r2, double *dqdr)
+{
+  if (r <= r1) {
+    *dqdr = 0.0;
+    return 1.0;
+  }
+  if (r >= r2) {
+    *dqdr = 0.0;
+    return 0.0;
+  }
+  *dqdr = -1.0 / (r2 - r1);
+  return (r2 - r) / (r2 - r1);
+}
+
+// one particle's integrand; gq = grad q (reference frame), e unit, 3 components each
+inline double j_integrand(const double *F, const double *P, double W, double rho0,
+                          const double *v, const double *a, const double *L, const double *e,
+                          const double *gq, double q)
+{
+  double He[3], Le[3];    // u_,1 and v_,1 along e
+  for (int i = 0; i < 3; i++) {
+    He[i] = (F[3 * i] - (i == 0 ? 1.0 : 0.0)) * e[0] + (F[3 * i + 1] - (i == 1 ? 1.0 : 0.0)) * e[1] +
+        (F[3 * i + 2] - (i == 2 ? 1.0 : 0.0)) * e[2];
+    Le[i] = L[3 * i] * e[0] + L[3 * i + 1] * e[1] + L[3 * i + 2] * e[2];
+  }
+  const double T = 0.5 * rho0 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  double j = -(W + T) * (e[0] * gq[0] + e[1] * gq[1] + e[2] * gq[2]);
+  for (int i = 0; i < 3; i++)
+    j += He[i] * (P[3 * i] * gq[0] + P[3 * i + 1] * gq[1] + P[3 * i + 2] * gq[2]);
+  if (q != 0.0)
+    j += rho0 * q *
+        (a[0] * He[0] + a[1] * He[1] + a[2] * He[2] - v[0] * Le[0] - v[1] * Le[1] - v[2] * Le[2]);
+  return j;
+}
+
+/* K_I and K_II from J and the displacement correlation's mode mix: J sets
+   the size, K_I^2 + K_II^2 = E' J, the correlation (kd) the ratio and the
+   signs. J <= 0, or no mix to take (kd zero), gives zero. */
+inline CrackK k_from_j(double J, const CrackK &kd, double Eprime)
+{
+  const double n2 = kd.KI * kd.KI + kd.KII * kd.KII;
+  if (!(J > 0.0) || !(n2 > 0.0)) return CrackK{0.0, 0.0};
+  const double s = std::sqrt(Eprime * J / n2);
+  return CrackK{s * kd.KI, s * kd.KII};
+}
+
 }    // namespace TLSPH
 
 #endif

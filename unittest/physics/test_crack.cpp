@@ -201,3 +201,99 @@ TEST(CrackTip, OffsetFitRecoversKOfAShiftedTip)
   EXPECT_EQ(TLSPH::displacement_correlation_offset(2, r3, j2, z, 1e9).KI,
             TLSPH::displacement_correlation(2, r3, j2, z, 1e9).KI);
 }
+
+namespace {
+
+/* The domain J-integral of the Williams field (modes I and II, plane
+   strain, small strain) with the crack along direction beta, on a lattice
+   of spacing d over the disc of radius r2 about the tip: each lattice point
+   a "particle" of volume d^2 (unit depth), its displacement gradient by
+   central differences of williams_u, its stress by Hooke's law. */
+double williams_j(double KI, double KII, double beta, double r1, double r2, double d)
+{
+  const double E = 32e9, nu = 0.2, mu = E / (2 * (1 + nu)), lam = 2 * mu * nu / (1 - 2 * nu);
+  const double kappa = 3 - 4 * nu;
+  const double cb = std::cos(beta), sb = std::sin(beta);
+  const double e[3] = {cb, sb, 0.0}, zero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const int n = (int) std::ceil(r2 / d) + 1;
+  double J = 0.0;
+  for (int a = -n; a < n; a++)
+    for (int b = -n; b < n; b++) {
+      // the lattice in the crack's frame (points off the crack line y = 0)
+      const double xl = (a + 0.5) * d, yl = (b + 0.5) * d;
+      const double r = std::hypot(xl, yl);
+      if (r >= r2) continue;
+      // local displacement gradient: central differences in the crack's frame
+      double Hl[2][2];
+      const double s = 1e-6 * d;
+      for (int c = 0; c < 2; c++) {
+        double up[2], um[2];
+        const double xp = xl + (c == 0 ? s : 0), yp = yl + (c == 1 ? s : 0);
+        const double xm = xl - (c == 0 ? s : 0), ym = yl - (c == 1 ? s : 0);
+        williams_u(KI, KII, mu, kappa, std::hypot(xp, yp), std::atan2(yp, xp), up);
+        williams_u(KI, KII, mu, kappa, std::hypot(xm, ym), std::atan2(ym, xm), um);
+        for (int i = 0; i < 2; i++) Hl[i][c] = (up[i] - um[i]) / (2 * s);
+      }
+      // rotated into the global frame: H = R Hl R^T
+      const double R[2][2] = {{cb, -sb}, {sb, cb}};
+      double H[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+      for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+          for (int k = 0; k < 2; k++)
+            for (int l = 0; l < 2; l++) H[3 * i + j] += R[i][k] * Hl[k][l] * R[j][l];
+      double eps[9], sig[9], F[9];
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) eps[3 * i + j] = 0.5 * (H[3 * i + j] + H[3 * j + i]);
+      const double tr = eps[0] + eps[4];
+      double W = 0.0;
+      for (int k = 0; k < 9; k++) {
+        sig[k] = 2 * mu * eps[k] + ((k % 4) == 0 ? lam * tr : 0.0);
+        W += 0.5 * sig[k] * eps[k];
+      }
+      for (int k = 0; k < 9; k++) F[k] = H[k] + ((k % 4) == 0 ? 1.0 : 0.0);
+      double dq;
+      const double q = TLSPH::ring_weight(r, r1, r2, &dq);
+      const double gq[3] = {dq * (cb * xl - sb * yl) / r, dq * (sb * xl + cb * yl) / r, 0.0};
+      const double v0[3] = {0, 0, 0};
+      J += d * d * TLSPH::j_integrand(F, sig, W, 2450.0, v0, v0, zero, e, gq, q);
+    }
+  return J;
+}
+
+}    // namespace
+
+// the domain J-integral of the Williams field is (K_I^2 + K_II^2) / E'
+// whatever the crack's direction and the ring, and its lattice sum
+// converges to it as the lattice is refined
+TEST(CrackTip, DomainJIntegralOfTheWilliamsField)
+{
+  const double E = 32e9, nu = 0.2, Eprime = E / (1 - nu * nu);
+  const double r2 = 4e-3;
+  for (double beta : {0.0, 0.7, -2.2})
+    for (double KII : {0.0, 0.6e6})
+      for (double KI : {1.0e6, 0.3e6}) {
+        const double Jx = (KI * KI + KII * KII) / Eprime;
+        double err_prev = 1.0;
+        for (double d : {r2 / 40, r2 / 160}) {
+          const double J = williams_j(KI, KII, beta, 0.4 * r2, r2, d);
+          const double err = std::fabs(J / Jx - 1.0);
+          EXPECT_LT(err, d < r2 / 100 ? 0.005 : 0.05) << "beta " << beta << " d " << d;
+          EXPECT_LT(err, err_prev);
+          err_prev = err;
+        }
+        // another ring, the same J (path independence)
+        EXPECT_NEAR(williams_j(KI, KII, beta, 0.1 * r2, 0.7 * r2, r2 / 160) / Jx, 1.0, 0.005);
+      }
+}
+
+// K from J: the size from J, the ratio and signs from the correlation
+TEST(CrackTip, KFromJKeepsTheModeMix)
+{
+  const double Eprime = 3e10;
+  const TLSPH::CrackK k = TLSPH::k_from_j(2.0, TLSPH::CrackK{3.0, -1.5}, Eprime);
+  EXPECT_NEAR((k.KI * k.KI + k.KII * k.KII) / Eprime, 2.0, 1e-12);
+  EXPECT_NEAR(k.KII / k.KI, -0.5, 1e-12);
+  EXPECT_GT(k.KI, 0.0);
+  EXPECT_EQ(TLSPH::k_from_j(-1.0, TLSPH::CrackK{3.0, 0.0}, Eprime).KI, 0.0);
+  EXPECT_EQ(TLSPH::k_from_j(1.0, TLSPH::CrackK{0.0, 0.0}, Eprime).KI, 0.0);
+}
