@@ -19,6 +19,7 @@ PairStyle(tlsph/damage,PairTLSPHDamage)
 #define LMP_PAIR_TLSPH_DAMAGE_H
 
 #include "pair_tlsph.h"
+#include "tlsph_crack_tips.h"
 
 #include <array>
 #include <vector>
@@ -60,20 +61,9 @@ class PairTLSPHDamage : public PairTLSPH {
   const double *kernel_weights(int i);
   double critical_stretch_of(int type) const { return sc[type]; }
   // 'criterion tip': the crack tips (path vertices, the last one the tip), all ranks
-  struct CrackTip {
-    std::vector<std::array<double, 2>> path;    // vertices, the last one is the tip
-    double t[2];                                // direction of the current segment
-    double seg;                                 // length grown on the current segment
-    double own;                                 // length grown since the tip was born
-    int alive, growing;
-    // at the last force evaluation (not in restart files: measured every step)
-    double KI = 0.0, KII = 0.0;    // stress intensity factors (displacement correlation)
-    double G = 0.0;                // energy release rate of the kink direction
-    double kink = 0.0;             // kink angle of the maximum tangential stress [rad]
-    double speed = 0.0;            // advance speed (0: not growing)
-  };
-  const std::vector<CrackTip> &crack_tips() const { return tips; }
-  double tip_fracture_energy() const { return tip_Gc; }
+  using CrackTip = LAMMPS_NS::CrackTip;
+  const std::vector<CrackTip> &crack_tips() const { return crack->tips(); }
+  double tip_fracture_energy() const { return crack->fracture_energy(); }
   int tip_mode() const { return tipmode; }
 
  protected:
@@ -103,44 +93,15 @@ class PairTLSPHDamage : public PairTLSPH {
 
   // 'criterion tip' (3D: through-thickness cracks): crack-tip tracking. Each pre-crack
   // end inside the body is a tip; its stress intensity factors come from
-  // the crack-face displacement jump behind it, it turns by the maximum
-  // tangential stress angle and advances at the speed of Freund's equation
-  // of motion, cutting the bonds its path crosses (no other bond breaks)
+  // the crack-face displacement jump behind it (or the domain J-integral),
+  // it turns by the maximum tangential stress angle and advances at the
+  // speed of Freund's equation of motion, cutting the bonds its path crosses
+  // (no other bond breaks). The tips live in 'crack' (tlsph_crack_tips.h),
+  // which reads the particles' fields here and calls cut_path.
+  friend class TLSPHCrackTips;
   int tipmode;
-  int tip_hoop;         // direction: 0 kink angle from K_I, K_II, 1 largest hoop stress
-  int tip_kfit;         // K: 0 fit anchored at the path's end, 1 with the tip's offset fitted,
-                        // 2 size from the domain J-integral (ratio: fit 0)
-  double tip_jr1, tip_jr2;    // kfit j: the J domain's ring, q = 1 inside r1, 0 beyond r2 [h]
-  // kfit j: each visited particle's velocity at the last step (the
-  // acceleration of the J-integral's inertia term), its tag and step
-  struct JPrev {
-    double v[3];
-    tagint tag;
-    bigint step;
-  };
-  std::vector<JPrev> jprev;
-  void tip_j_integrals(const std::vector<int> &live, std::vector<double> &J);
-  double tip_seg;       // segment length in h (0: the sampling reach)
-  double tip_branch;    // half angle of a branching [rad] (0: tips never branch)
-  std::vector<CrackTip> tips;
-  int tips_ready;
-  double tip_Eprime, tip_Gc, tip_cR, tip_depth;
-  void init_tips();
-  void grow_tips();
+  TLSPHCrackTips *crack;
   void cut_path(const double *A, const double *B);
-  // the local particles in square cells of their reference positions (xy),
-  // so that the tip work visits only the particles near a tip: rebuilt when
-  // the bond cache is (the particle indices change only at neighbor builds)
-  struct RefCells {
-    double lo[2] = {0.0, 0.0}, cs = 1.0;
-    int nx = 0, ny = 0;
-    std::vector<int> start, idx;    // cell c holds idx[start[c] .. start[c + 1]), ascending
-    std::array<int, 2> stamp = {-1, -1};
-  } tip_cells;
-  void refresh_tip_cells();
-  // the local particles whose reference position lies in [lo, hi] (xy), ascending
-  void particles_in_box(const double *lo, const double *hi, std::vector<int> &out) const;
-  void volume_near(const std::vector<std::array<double, 2>> &pts, double R, std::vector<double> &vol);
 
   int nmax_d;
   double *phi, *phis, *alphas;

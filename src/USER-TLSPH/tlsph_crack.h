@@ -2,13 +2,17 @@
    USER-TLSPH: the LAMMPS-free crack-tip mechanics of crack-tip tracking
    (pair_style tlsph/damage criterion tip; PairTLSPHDamage::grow_tips):
    the stress intensity factors by displacement correlation and the
-   maximum-tangential-stress rule (Erdogan & Sih 1963). Plain C++, tested
-   without LAMMPS (unittest/physics/test_crack.cpp) against the Williams
-   near-tip fields.
+   maximum-tangential-stress rule (Erdogan & Sih 1963), the energy release
+   rate by the domain J-integral, the speed law (Freund) and the branching
+   rule (Yoffe). Plain C++, tested without LAMMPS
+   (unittest/physics/test_crack.cpp) against the Williams near-tip fields.
+   The crack-tips class (tlsph_crack_tips.h) applies them in a run.
 ------------------------------------------------------------------------- */
 
 #ifndef TLSPH_CRACK_H
 #define TLSPH_CRACK_H
+
+#include "tlsph_math.h"
 
 #include <cmath>
 
@@ -185,6 +189,81 @@ inline CrackK k_from_j(double J, const CrackK &kd, double Eprime)
   if (!(J > 0.0) || !(n2 > 0.0)) return CrackK{0.0, 0.0};
   const double s = std::sqrt(Eprime * J / n2);
   return CrackK{s * kd.KI, s * kd.KII};
+}
+
+/* The speed of a tip whose G reaches G_c: Freund's equation of motion,
+   v = c_R (1 - G_c / G), so a tip never runs faster than c_R. */
+inline double freund_speed(double G, double Gc, double cR)
+{
+  return cR * (1.0 - Gc / G);
+}
+
+/* The hoop stress sigma_theta_theta on the ray at angle phi (from x) of a
+   plane stress state sx, sy, sxy: e_theta = (-sin phi, cos phi). */
+inline double hoop_stress(double sx, double sy, double sxy, double phi)
+{
+  const double c = std::cos(phi), sn = std::sin(phi);
+  return sx * sn * sn + sy * c * c - 2.0 * sxy * sn * c;
+}
+
+/* The branching rule 'branch yoffe': a fast crack branches when the hoop
+   stress about its tip has a maximum on each side of its line (Yoffe 1951:
+   the maxima leave the line above about 0.6 c_s), and the branches take
+   those directions. From n samples hoop[k] at angles u[k] from the crack's
+   line (ok[k] false: no sample), first a smooth profile (the samples carry
+   the lattice's ripple): the least squares fit of
+   c0 + c1 cos u + c2 cos 2u + s1 sin u + s2 sin 2u (cf, in that order),
+   then its largest local maximum on each side of the line on a 1 deg grid
+   within +-window deg (window 65: the fit is loosely held near its ends, and
+   the off-axis maxima of a running crack stay within about 60-65 deg of its
+   line up to the Rayleigh speed). split: both maxima exist and are tensile
+   (> 0); ul < 0 < ur their angles [rad], bl, br their values. */
+struct YoffeBranches {
+  int split;
+  double ul, ur, bl, br;
+  double cf[5];
+};
+inline YoffeBranches yoffe_branches(int n, const double *u, const double *hoop, const int *ok,
+                                    int window)
+{
+  YoffeBranches r{0, 0.0, 0.0, -1.0, -1.0, {0.0, 0.0, 0.0, 0.0, 0.0}};
+  double M[25] = {0.0}, rhs[5] = {0.0};
+  auto basis = [](double v, double *b) {
+    b[0] = 1.0;
+    b[1] = std::cos(v);
+    b[2] = std::cos(2.0 * v);
+    b[3] = std::sin(v);
+    b[4] = std::sin(2.0 * v);
+  };
+  int nfit = 0;
+  for (int j = 0; j < n; j++) {
+    if (!ok[j]) continue;
+    double b[5];
+    basis(u[j], b);
+    for (int a = 0; a < 5; a++) {
+      rhs[a] += b[a] * hoop[j];
+      for (int c = 0; c < 5; c++) M[5 * a + c] += b[a] * b[c];
+    }
+    nfit++;
+  }
+  double Minv[25];
+  if (nfit >= 5 && invert_small(5, M, Minv))
+    for (int a = 0; a < 5; a++)
+      for (int c = 0; c < 5; c++) r.cf[a] += Minv[5 * a + c] * rhs[c];
+  auto smooth = [&](double v) {
+    double b[5];
+    basis(v, b);
+    return r.cf[0] * b[0] + r.cf[1] * b[1] + r.cf[2] * b[2] + r.cf[3] * b[3] + r.cf[4] * b[4];
+  };
+  for (int d = -window; d <= window; d++) {
+    const double v = d * M_PI / 180.0, e = M_PI / 180.0;
+    const double f0 = smooth(v);
+    if (!(f0 > smooth(v - e) && f0 >= smooth(v + e))) continue;
+    if (d < 0 && (r.bl < 0.0 || f0 > r.bl)) r.bl = f0, r.ul = v;
+    if (d > 0 && (r.br < 0.0 || f0 > r.br)) r.br = f0, r.ur = v;
+  }
+  r.split = (r.bl > 0.0 && r.br > 0.0) ? 1 : 0;
+  return r;
 }
 
 }    // namespace TLSPH

@@ -297,3 +297,50 @@ TEST(CrackTip, KFromJKeepsTheModeMix)
   EXPECT_EQ(TLSPH::k_from_j(-1.0, TLSPH::CrackK{3.0, 0.0}, Eprime).KI, 0.0);
   EXPECT_EQ(TLSPH::k_from_j(1.0, TLSPH::CrackK{0.0, 0.0}, Eprime).KI, 0.0);
 }
+
+// the speed law and the hoop stress
+TEST(CrackTip, SpeedLawAndHoopStress)
+{
+  EXPECT_DOUBLE_EQ(TLSPH::freund_speed(2.0, 1.0, 2000.0), 1000.0);
+  EXPECT_DOUBLE_EQ(TLSPH::freund_speed(1.0, 1.0, 2000.0), 0.0);
+  EXPECT_LT(TLSPH::freund_speed(1e12, 1.0, 2000.0), 2000.0);
+  // a uniaxial stress sx: the hoop stress on the ray at phi is sx sin^2 phi
+  for (double phi : {0.0, 0.3, 1.2, 2.5})
+    EXPECT_NEAR(TLSPH::hoop_stress(5.0, 0.0, 0.0, phi), 5.0 * std::sin(phi) * std::sin(phi), 1e-14);
+  // the rotation of (sx, sy, sxy) by phi: sigma_tt = sx sin^2 + sy cos^2 - 2 sxy sin cos
+  const double sx = 1.5, sy = -0.4, sxy = 0.7, phi = 0.9;
+  const double c = std::cos(phi), s = std::sin(phi);
+  EXPECT_NEAR(TLSPH::hoop_stress(sx, sy, sxy, phi), s * s * sx + c * c * sy - 2 * s * c * sxy, 1e-14);
+}
+
+// the branching rule on hoop profiles whose maxima are known: two maxima at
+// +-45 deg (f = cos u - b cos 2u, b = 1 / (4 cos 45 deg)), shifted by 6 deg,
+// with a lattice-like ripple the fit removes; one maximum (a crack at rest:
+// the Williams mode I hoop stress, largest ahead of the tip) gives no split
+TEST(CrackTip, YoffeBranchesFindTheTwoMaxima)
+{
+  const int n = 33;
+  double u[n], f[n];
+  int ok[n];
+  const double b = 1.0 / (4.0 * std::cos(PI / 4)), sh = 6.0 * PI / 180.0;
+  for (int k = 0; k < n; k++) {
+    u[k] = (k - n / 2) * 5.0 * PI / 180.0;
+    f[k] = std::cos(u[k] - sh) - b * std::cos(2 * (u[k] - sh)) + 0.002 * ((k % 2) ? 1 : -1);
+    ok[k] = 1;
+  }
+  TLSPH::YoffeBranches yb = TLSPH::yoffe_branches(n, u, f, ok, 65);
+  EXPECT_EQ(yb.split, 1);
+  EXPECT_NEAR(yb.ul * 180 / PI, -45.0 + 6.0, 1.5);
+  EXPECT_NEAR(yb.ur * 180 / PI, 45.0 + 6.0, 1.5);
+  // missing samples are left out of the fit
+  ok[3] = ok[20] = 0;
+  f[3] = f[20] = -1e300;
+  yb = TLSPH::yoffe_branches(n, u, f, ok, 65);
+  EXPECT_EQ(yb.split, 1);
+  EXPECT_NEAR(yb.ur * 180 / PI, 51.0, 1.5);
+  // maxima beyond the window are not taken
+  EXPECT_EQ(TLSPH::yoffe_branches(n, u, f, ok, 40).split, 0);
+  // the Williams mode I hoop stress: one maximum, on the line
+  for (int k = 0; k < n; k++) f[k] = hoop(1.0, 0.0, u[k]), ok[k] = 1;
+  EXPECT_EQ(TLSPH::yoffe_branches(n, u, f, ok, 65).split, 0);
+}

@@ -128,6 +128,9 @@ def main():
                     help="pair_style tlsph/damage criterion ('tip': crack-tip tracking with "
                          "'branch yoffe'; the restarted runs take it, and the tips, from the "
                          "restart file)")
+    ap.add_argument("--kfit", default="tip",
+                    help="with --crit tip: pair_style tlsph/damage kfit (tip, offset or j)")
+    ap.add_argument("--gc", type=float, default=3.0, help="the glass's fracture energy [J/m^2]")
     args = ap.parse_args()
     args.srcdir = os.path.abspath(args.srcdir)
     args.lmp = os.path.abspath(args.lmp)
@@ -137,7 +140,7 @@ def main():
         ap.error("--steps must be even")
 
     fam = ["-var", "family", repr(args.family)] if args.family > 0 else []
-    fam += ["-var", "crit", args.crit]
+    fam += ["-var", "crit", args.crit, "-var", "kfit", args.kfit, "-var", "gc", repr(args.gc)]
     problems, results = [], []
     for np in args.np:
         tag = "np%d" % np

@@ -1,0 +1,746 @@
+/* ----------------------------------------------------------------------
+   USER-TLSPH: the crack tips of crack-tip tracking, see tlsph_crack_tips.h
+   and doc/pair_tlsph_damage.rst ("Crack-tip tracking")
+------------------------------------------------------------------------- */
+
+#include "tlsph_crack_tips.h"
+
+#include "pair_tlsph_damage.h"
+#include "tlsph_crack.h"
+#include "tlsph_input.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+using namespace LAMMPS_NS;
+
+TLSPHCrackTips::TLSPHCrackTips(LAMMPS *lmp, PairTLSPHDamage *p) : Pointers(lmp), pair(p)
+{
+  defaults();
+  ready = depth_ready = 0;
+  Eprime = Gc = cR = depth = 0.0;
+}
+
+void TLSPHCrackTips::defaults()
+{
+  tipdir_hoop = 0;
+  kfit = 0;
+  jr1 = 2.0;
+  jr2 = 4.0;
+  seg = 0.0;
+  branch = 0.0;
+}
+
+/* the tip keywords of pair_style tlsph/damage: tipdir faces|hoop,
+   kfit tip|offset|j, jring r1 r2, tipseg L, branch yoffe|A */
+int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
+{
+  const std::string key = arg[iarg];
+  if (key == "tipdir") {
+    if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: tipdir needs a value");
+    if (strcmp(arg[iarg + 1], "faces") == 0) tipdir_hoop = 0;
+    else if (strcmp(arg[iarg + 1], "hoop") == 0) tipdir_hoop = 1;
+    else
+      error->all(FLERR, "pair_style tlsph/damage: tipdir must be 'faces' or 'hoop', got '{}'",
+                 arg[iarg + 1]);
+    return 2;
+  }
+  if (key == "kfit") {
+    if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: kfit needs a value");
+    if (strcmp(arg[iarg + 1], "tip") == 0) kfit = 0;
+    else if (strcmp(arg[iarg + 1], "offset") == 0) kfit = 1;
+    else if (strcmp(arg[iarg + 1], "j") == 0) kfit = 2;
+    else
+      error->all(FLERR, "pair_style tlsph/damage: kfit must be 'tip', 'offset' or 'j', got '{}'",
+                 arg[iarg + 1]);
+    return 2;
+  }
+  if (key == "jring") {
+    if (iarg + 2 >= narg)
+      error->all(FLERR, "pair_style tlsph/damage: jring needs two values (the J domain's inner "
+                        "and outer radius in h)");
+    jr1 = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
+    jr2 = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 2]);
+    if (!(jr1 >= 0.0 && jr2 > jr1 && jr2 < 1.0e3))
+      error->all(FLERR, "pair_style tlsph/damage: jring must be two radii in h with 0 <= r1 < "
+                        "r2, got {} {}", arg[iarg + 1], arg[iarg + 2]);
+    return 3;
+  }
+  if (key == "tipseg") {
+    if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: tipseg needs a value");
+    seg = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
+    if (!(seg >= 0.0))
+      error->all(FLERR, "pair_style tlsph/damage: tipseg must be >= 0 (a length in h; 0: the "
+                        "sampling reach), got {}", arg[iarg + 1]);
+    return 2;
+  }
+  if (key == "branch") {
+    if (iarg + 1 >= narg)
+      error->all(FLERR, "pair_style tlsph/damage: branch needs a value (half angle in degrees)");
+    if (strcmp(arg[iarg + 1], "yoffe") == 0) {
+      branch = -1.0;
+    } else {
+      const double a = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
+      if (!(a >= 0.0 && a < 90.0))
+        error->all(FLERR, "pair_style tlsph/damage: branch must be 'yoffe' or an angle in "
+                          "[0, 90) degrees, got {}", arg[iarg + 1]);
+      branch = a * M_PI / 180.0;
+    }
+    return 2;
+  }
+  return 0;
+}
+
+/* ----------------------------------------------------------------------
+   restart: the settings, then every tip with its path (identical on all
+   ranks). tipdir and kfit share one value (files written before kfit read
+   as kfit tip); tipmode + 2 marks the layout with the J ring after the six
+   (files written before it have tipmode 0 or 1 there and the default ring)
+------------------------------------------------------------------------- */
+
+void TLSPHCrackTips::write_restart(FILE *fp, int tipmode)
+{
+  double w[6] = {(double) tipmode + 2.0, (double) (tipdir_hoop + 2 * kfit), seg, branch,
+                 (double) ready, (double) list.size()};
+  fwrite(w, sizeof(double), 6, fp);
+  const double jr[2] = {jr1, jr2};
+  fwrite(jr, sizeof(double), 2, fp);
+  for (const auto &tp : list) {
+    std::vector<double> r = {(double) tp.path.size(), tp.t[0], tp.t[1], tp.seg, tp.own,
+                             (double) tp.alive, (double) tp.growing};
+    for (const auto &p : tp.path) r.insert(r.end(), {p[0], p[1]});
+    fwrite(r.data(), sizeof(double), r.size(), fp);
+  }
+}
+
+int TLSPHCrackTips::read_restart(FILE *fp)
+{
+  double w[6];
+  if (comm->me == 0) utils::sfread(FLERR, w, sizeof(double), 6, fp, nullptr, error);
+  MPI_Bcast(w, 6, MPI_DOUBLE, 0, world);
+  const bool with_ring = (w[0] >= 2.0);
+  if (with_ring) w[0] -= 2.0;
+  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 5.0 && w[1] == std::floor(w[1])) &&
+        w[2] >= 0.0 && w[3] < 2.0 && (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 &&
+        w[5] == std::floor(w[5]) && w[5] < 1.0e7))
+    error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
+                      "version's layout (written by another version of the package?)");
+  const int tipmode = static_cast<int>(w[0]);
+  tipdir_hoop = static_cast<int>(w[1]) % 2;
+  kfit = static_cast<int>(w[1]) / 2;
+  seg = w[2];
+  branch = w[3];
+  ready = static_cast<int>(w[4]);
+  depth_ready = 0;
+  jr1 = 2.0;
+  jr2 = 4.0;
+  if (with_ring) {
+    double jr[2];
+    if (comm->me == 0) utils::sfread(FLERR, jr, sizeof(double), 2, fp, nullptr, error);
+    MPI_Bcast(jr, 2, MPI_DOUBLE, 0, world);
+    if (!(jr[0] >= 0.0 && jr[1] > jr[0] && jr[1] < 1.0e3))
+      error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
+                        "version's layout (written by another version of the package?)");
+    jr1 = jr[0];
+    jr2 = jr[1];
+  }
+  list.assign(static_cast<size_t>(w[5]), CrackTip{});
+  for (auto &tp : list) {
+    double r[7];
+    if (comm->me == 0) utils::sfread(FLERR, r, sizeof(double), 7, fp, nullptr, error);
+    MPI_Bcast(r, 7, MPI_DOUBLE, 0, world);
+    const int np = static_cast<int>(r[0]);
+    tp.t[0] = r[1];
+    tp.t[1] = r[2];
+    tp.seg = r[3];
+    tp.own = r[4];
+    tp.alive = static_cast<int>(r[5]);
+    tp.growing = static_cast<int>(r[6]);
+    std::vector<double> q(2 * (size_t) np);
+    if (comm->me == 0 && np > 0)
+      utils::sfread(FLERR, q.data(), sizeof(double), q.size(), fp, nullptr, error);
+    if (np > 0) MPI_Bcast(q.data(), (int) q.size(), MPI_DOUBLE, 0, world);
+    tp.path.resize(np);
+    for (int k = 0; k < np; k++) tp.path[k] = {q[2 * k], q[2 * k + 1]};
+  }
+  return tipmode;
+}
+
+void TLSPHCrackTips::init(double Ep, double G_c, double c_R)
+{
+  Eprime = Ep;
+  Gc = G_c;
+  cR = c_R;
+}
+
+/* ----------------------------------------------------------------------
+   'criterion tip': crack-tip tracking (2D, and through-thickness cracks in 3D)
+------------------------------------------------------------------------- */
+
+// the volume of the particles within radius R of each point (all ranks)
+void TLSPHCrackTips::refresh_cells()
+{
+  RefCells &rc = cells;
+  const int nlocal = atom->nlocal;
+  const std::array<int, 2> stamp = {pair->cache_version, nlocal};
+  if (stamp == rc.stamp) return;
+  rc.stamp = stamp;
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  for (int i = 0; i < nlocal; i++)
+    for (int d = 0; d < 2; d++) lo[d] = MIN(lo[d], pair->x0c[i][d]), hi[d] = MAX(hi[d], pair->x0c[i][d]);
+  if (nlocal == 0) lo[0] = lo[1] = hi[0] = hi[1] = 0.0;
+  // cells of side h, larger where that would give more cells than 4 per particle
+  double cs = pair->h;
+  const double ncell_max = 4.0 * nlocal + 1024.0;
+  while (((hi[0] - lo[0]) / cs + 1.0) * ((hi[1] - lo[1]) / cs + 1.0) > ncell_max) cs *= 2.0;
+  rc.lo[0] = lo[0], rc.lo[1] = lo[1], rc.cs = cs;
+  rc.nx = (int) ((hi[0] - lo[0]) / cs) + 1;
+  rc.ny = (int) ((hi[1] - lo[1]) / cs) + 1;
+  const int nc = rc.nx * rc.ny;
+  std::vector<int> cell(nlocal);
+  rc.start.assign(nc + 1, 0);
+  for (int i = 0; i < nlocal; i++) {
+    const int cx = MIN(rc.nx - 1, (int) ((pair->x0c[i][0] - lo[0]) / cs));
+    const int cy = MIN(rc.ny - 1, (int) ((pair->x0c[i][1] - lo[1]) / cs));
+    cell[i] = cx + rc.nx * cy;
+    rc.start[cell[i] + 1]++;
+  }
+  for (int c = 0; c < nc; c++) rc.start[c + 1] += rc.start[c];
+  rc.idx.resize(nlocal);
+  std::vector<int> fill(rc.start.begin(), rc.start.end() - 1);
+  for (int i = 0; i < nlocal; i++) rc.idx[fill[cell[i]]++] = i;
+}
+
+void TLSPHCrackTips::particles_in_box(const double *lo, const double *hi, std::vector<int> &out)
+{
+  const RefCells &rc = cells;
+  out.clear();
+  out.reserve(64);
+  if (rc.nx == 0 || !(lo[0] <= hi[0]) || !(lo[1] <= hi[1])) return;
+  auto cell_of = [&](double v, int d, int n) {
+    const double f = floor((v - rc.lo[d]) / rc.cs);
+    return (int) MAX(0.0, MIN((double) (n - 1), f));
+  };
+  const int x0 = cell_of(lo[0], 0, rc.nx), x1 = cell_of(hi[0], 0, rc.nx);
+  const int y0 = cell_of(lo[1], 1, rc.ny), y1 = cell_of(hi[1], 1, rc.ny);
+  for (int cy = y0; cy <= y1; cy++)
+    for (int cx = x0; cx <= x1; cx++) {
+      const int c = cx + rc.nx * cy;
+      for (int k = rc.start[c]; k < rc.start[c + 1]; k++) {
+        const int i = rc.idx[k];
+        const double *X = pair->x0c[i];
+        if (X[0] >= lo[0] && X[0] <= hi[0] && X[1] >= lo[1] && X[1] <= hi[1]) out.push_back(i);
+      }
+    }
+  std::sort(out.begin(), out.end());
+}
+
+// the volume of the local particles within R of each point (xy), all ranks
+void TLSPHCrackTips::volume_near(const std::vector<std::array<double, 2>> &pts, double R,
+                                  std::vector<double> &vol)
+{
+  refresh_cells();
+  const double *vfrac = atom->vfrac;
+  std::vector<double> mine(pts.size(), 0.0);
+  std::vector<int> near;
+  for (size_t p = 0; p < pts.size(); p++) {
+    const double lo[2] = {pts[p][0] - R, pts[p][1] - R}, hi[2] = {pts[p][0] + R, pts[p][1] + R};
+    particles_in_box(lo, hi, near);
+    for (int i : near) {
+      const double dx = pair->x0c[i][0] - pts[p][0], dy = pair->x0c[i][1] - pts[p][1];
+      if (dx * dx + dy * dy < R * R) mine[p] += vfrac[i];
+    }
+  }
+  vol.assign(pts.size(), 0.0);
+  MPI_Allreduce(mine.data(), vol.data(), (int) pts.size(), MPI_DOUBLE, MPI_SUM, world);
+}
+
+// the depth of the body along z (2D: the thickness in the particle volumes),
+// which turns volumes into areas; measured at the first step of a run
+// (restart files do not carry it)
+void TLSPHCrackTips::measure_depth()
+{
+  depth = pair->thickness;
+  if (pair->dim == 3) {
+    double lo = 1.0e300, hi = -1.0e300, vmax = 0.0, g[3];
+    for (int i = 0; i < atom->nlocal; i++) {
+      lo = MIN(lo, pair->x0c[i][2]);
+      hi = MAX(hi, pair->x0c[i][2]);
+      vmax = MAX(vmax, atom->vfrac[i]);
+    }
+    double m[3] = {-lo, hi, vmax};
+    MPI_Allreduce(m, g, 3, MPI_DOUBLE, MPI_MAX, world);
+    depth = g[1] + g[0] + cbrt(g[2]);
+  }
+  depth_ready = 1;
+}
+
+// a pre-crack end is a tip when the body fills at least 3/4 of the disc of
+// radius 2h about it (an end outside the plate, or at its edge, is not)
+void TLSPHCrackTips::find_tips()
+{
+  ready = 1;
+  list.clear();
+  std::vector<std::array<double, 2>> ends;
+  for (const auto &c : pair->cracks) {
+    if (pair->dim == 2) {
+      ends.push_back({c[0], c[1]});
+      ends.push_back({c[2], c[3]});
+    } else {
+      // 3D: through-thickness cracks only, a parallelogram with one edge
+      // along z; its trace in the xy plane is tracked (the crack surface is
+      // that trace extruded through the thickness)
+      const bool wz = (c[6] == c[0] && c[7] == c[1]), uz = (c[3] == c[0] && c[4] == c[1]);
+      if (!wz && !uz)
+        error->all(FLERR, "pair tlsph/damage: 'criterion tip' in 3D needs pre-cracks through "
+                          "the thickness (a parallelogram with one edge along z)");
+      ends.push_back({c[0], c[1]});
+      if (wz) ends.push_back({c[3], c[4]});
+      else ends.push_back({c[6], c[7]});
+    }
+  }
+  std::vector<double> vol;
+  volume_near(ends, 2.0 * pair->h, vol);
+  const double full = M_PI * 4.0 * pair->h * pair->h * depth;
+  for (size_t e = 0; e < ends.size(); e++) {
+    if (vol[e] < 0.75 * full) continue;
+    const auto &E = ends[e], &O = ends[e ^ 1];
+    CrackTip tp;
+    tp.path = {O, E};
+    const double L = std::hypot(E[0] - O[0], E[1] - O[1]);
+    tp.t[0] = (E[0] - O[0]) / L;
+    tp.t[1] = (E[1] - O[1]) / L;
+    tp.seg = tp.own = 0.0;
+    tp.alive = 1;
+    tp.growing = 0;
+    list.push_back(tp);
+    if (comm->me == 0)
+      utils::logmesg(lmp, "pair tlsph/damage: crack tip at ({:.6g}, {:.6g}), direction ({:.4f}, "
+                          "{:.4f}); E' {:.6g} G_c {:.6g} c_R {:.6g}\n", E[0], E[1], tp.t[0], tp.t[1],
+                     Eprime, Gc, cR);
+  }
+}
+
+
+/* kfit j: the domain J-integral (tlsph_crack.h, j_integrand) of each tip in
+   'live', over the particles whose reference position lies within jr2 h of
+   the tip (a cylinder through the thickness in 3D), per unit depth, all
+   ranks. Each particle's F comes from its intact bonds and the positions
+   now (the F of the last deformation pass is a step old and, at a neighbor
+   build, another atom's), P and W from its law. The sums run over the
+   particles in ascending order. The inertia term (the area integral of
+   rho0 (a . u_,1 - v . v_,1) q) is left out: it is zero for a crack at rest
+   and for one running steadily, and it falls with the domain (as r2^3/2
+   against J's r2^0), which shrinks with h; it would need each particle's
+   acceleration, a history that neither migrates with the atoms nor is in a
+   restart file, so the same run on other ranks or restarted would differ. */
+void TLSPHCrackTips::j_integrals(const std::vector<int> &live, std::vector<double> &J)
+{
+  const int nt = live.size();
+  J.assign(nt, 0.0);
+  double **x = atom->x, **v = atom->v;
+  const double *vfrac = atom->vfrac, *rmass = atom->rmass;
+  const double r1 = jr1 * pair->h, r2 = jr2 * pair->h;
+  const double z3[3] = {0.0, 0.0, 0.0}, z9[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const auto xr = TLSPH::StridedRows{x[0], 3};
+  // each domain's particles, and its momentum and mass (all ranks): J is
+  // taken in the frame of the domain's mean velocity. In that of the
+  // continuum a uniform velocity changes nothing (its kinetic energy has
+  // zero divergence), but the particle sum of T grad q is not exactly zero,
+  // and a body in flight (T >> W) would drown J in that sum's error.
+  std::vector<std::vector<int>> dom(nt);
+  std::vector<double> pm(4 * nt, 0.0), pmall(4 * nt, 0.0);
+  std::vector<int> near;
+  for (int a = 0; a < nt; a++) {
+    const auto &T = list[live[a]].path.back();
+    const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
+    particles_in_box(lo, hi, near);
+    for (int i : near) {
+      const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
+      if (ex * ex + ey * ey >= r2 * r2) continue;
+      dom[a].push_back(i);
+      for (int d = 0; d < 3; d++) pm[4 * a + d] += rmass[i] * v[i][d];
+      pm[4 * a + 3] += rmass[i];
+    }
+  }
+  MPI_Allreduce(pm.data(), pmall.data(), 4 * nt, MPI_DOUBLE, MPI_SUM, world);
+  std::vector<double> mine(nt, 0.0);
+  for (int a = 0; a < nt; a++) {
+    const CrackTip &tp = list[live[a]];
+    const auto &T = tp.path.back();
+    const double e[3] = {tp.t[0], tp.t[1], 0.0};
+    double vm[3] = {0.0, 0.0, 0.0};
+    if (pmall[4 * a + 3] > 0.0)
+      for (int d = 0; d < 3; d++) vm[d] = pmall[4 * a + d] / pmall[4 * a + 3];
+    for (int i : dom[a]) {
+      const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
+      const double r = std::sqrt(ex * ex + ey * ey);
+      double dq;
+      TLSPH::ring_weight(r, r1, r2, &dq);
+      const double gq[3] = {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, 0.0};
+      if (dq == 0.0) continue;    // (the inertia term, which needs q, is left out: above)
+      double F[9], P[9];
+      const int nb = pair->nbond[i];
+      if (pair->dim == 2) TLSPH::deformation_gradient_bonds<2>(xr, i, pair->bonds_of<2>(i), nb, F);
+      else TLSPH::deformation_gradient_bonds<3>(xr, i, pair->bonds_of<3>(i), nb, F);
+      const double W = pair->pk1_stress(i, F, P);
+      const double rho0 = rmass[i] / vfrac[i];
+      const double vr[3] = {v[i][0] - vm[0], v[i][1] - vm[1], v[i][2] - vm[2]};
+      mine[a] += vfrac[i] * TLSPH::j_integrand(F, P, W, rho0, vr, z3, z9, e, gq, 0.0);
+    }
+  }
+  MPI_Allreduce(mine.data(), J.data(), nt, MPI_DOUBLE, MPI_SUM, world);
+  for (double &j : J) j /= depth;
+}
+
+/* Each step, for every live tip: the stress intensity factors from the
+   displacement jump across the faces behind it (displacement correlation:
+   du = 8 K sqrt(r / 2 pi) / E', sampled at r = 2h .. 5h along its path and
+   extrapolated to r = 0), the maximum tangential stress direction and
+   equivalent K (Erdogan & Sih), and, once G = K_eq^2 / E' reaches G_c, an
+   advance at v = c_R (1 - G_c / G) (Freund's equation of motion). The
+   direction is chosen at the start of a segment of length h and kept along
+   it. With 'branch A' a tip whose G reaches 2 G_c (the flux that can feed
+   two cracks) splits into two at +-A once it has grown 6h on its own. */
+void TLSPHCrackTips::grow()
+{
+  if (!depth_ready) measure_depth();
+  if (!ready) find_tips();
+  const int nt = list.size();
+  if (!nt) return;
+  constexpr int NK = 4;
+  const double rho = 1.5 * pair->h;
+  double rk[NK];
+  for (int k = 0; k < NK; k++) rk[k] = (1.5 + 0.5 * k) * pair->h;
+  // a segment keeps its direction until the samples lie on it
+  const double seglen = seg > 0.0 ? seg * pair->h : rk[NK - 1] + rho;
+  // sample points and the face normal there, walking back along each path
+  std::vector<double> Q(nt * NK * 2), T(nt * NK * 2);
+  std::vector<int> ok(nt * NK, 0);
+  for (int a = 0; a < nt; a++) {
+    const CrackTip &tp = list[a];
+    if (!tp.alive) continue;
+    for (int k = 0; k < NK; k++) {
+      double left = rk[k];
+      for (int v = (int) tp.path.size() - 1; v > 0; v--) {
+        const auto &p1 = tp.path[v], &p0 = tp.path[v - 1];
+        const double L = std::hypot(p1[0] - p0[0], p1[1] - p0[1]);
+        if (L <= 0.0) continue;
+        if (L >= left) {
+          const double tx = (p1[0] - p0[0]) / L, ty = (p1[1] - p0[1]) / L;
+          Q[2 * (a * NK + k)] = p1[0] - left * tx;
+          Q[2 * (a * NK + k) + 1] = p1[1] - left * ty;
+          T[2 * (a * NK + k)] = tx;
+          T[2 * (a * NK + k) + 1] = ty;
+          ok[a * NK + k] = 1;
+          break;
+        }
+        left -= L;
+      }
+    }
+  }
+  // kernel-weighted mean displacement on each side (6 sums per sample)
+  std::vector<double> mine(nt * NK * 6, 0.0), sums(nt * NK * 6, 0.0);
+  double **x = atom->x;
+  // Each sample visits the particles of the reference cells within rho of
+  // it (refresh_cells), not every particle: the work grows with the
+  // number of samples, not with the body. Its sums run over the particles in
+  // ascending order, as a sweep over all of them would.
+  refresh_cells();
+  std::vector<int> near;
+  for (int a = 0; a < nt; a++) {
+    // one query for the samples of a tip: the box around all of them
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (int k = 0; k < NK; k++) {
+      const int q = a * NK + k;
+      if (!ok[q]) continue;
+      for (int d = 0; d < 2; d++) lo[d] = MIN(lo[d], Q[2 * q + d] - rho), hi[d] = MAX(hi[d], Q[2 * q + d] + rho);
+    }
+    particles_in_box(lo, hi, near);
+    for (int k = 0; k < NK; k++) {
+      const int q = a * NK + k;
+      if (!ok[q]) continue;
+      for (int i : near) {
+        const double *X = pair->x0c[i];
+        const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
+        const double r2 = dx * dx + dy * dy;
+        if (r2 >= rho * rho) continue;
+        const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
+        // + side: to the left of the path (n = t rotated by +90 deg)
+        const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
+        if (dn == 0.0) continue;
+        double *S = mine.data() + 6 * q + (dn > 0.0 ? 0 : 3);
+        S[0] += w;
+        S[1] += w * (x[i][0] - X[0]);
+        S[2] += w * (x[i][1] - X[1]);
+      }
+    }
+  }
+  MPI_Allreduce(mine.data(), sums.data(), nt * NK * 6, MPI_DOUBLE, MPI_SUM, world);
+  // kfit j: the energy release rate of each live tip (the domain J-integral)
+  std::vector<double> Jt(nt, 0.0);
+  if (kfit == 2) {
+    std::vector<int> live;
+    for (int a = 0; a < nt; a++)
+      if (list[a].alive) live.push_back(a);
+    std::vector<double> Jl;
+    j_integrals(live, Jl);
+    for (size_t k = 0; k < live.size(); k++) Jt[live[k]] = Jl[k];
+  }
+
+  const double dt = update->dt;
+  // per tip: G of the maximum tangential stress direction, and the direction
+  // a new segment would take (nd)
+  std::vector<double> Gt(nt, 0.0), nd(2 * nt, 0.0), Kt(2 * nt, 0.0), tht(nt, 0.0);
+  std::vector<int> want;    // list that start a new segment this step
+  for (int a = 0; a < nt; a++) {
+    CrackTip &tp = list[a];
+    if (!tp.alive) continue;
+    // the faces' jump at the samples, normal and tangential to the faces
+    double rr[NK], jn[NK], jt[NK];
+    double fr[2] = {0.0, 0.0};    // the faces' mean direction: the frame of K_I, K_II
+    int cnt = 0;
+    for (int k = 0; k < NK; k++) {
+      const int q = a * NK + k;
+      const double *S = sums.data() + 6 * q;
+      if (!ok[q] || !(S[0] > 0.0) || !(S[3] > 0.0)) continue;
+      const double dux = S[1] / S[0] - S[4] / S[3], duy = S[2] / S[0] - S[5] / S[3];
+      const double tx = T[2 * q], ty = T[2 * q + 1];
+      fr[0] += tx;
+      fr[1] += ty;
+      rr[cnt] = rk[k];
+      jn[cnt] = -ty * dux + tx * duy;
+      jt[cnt] = tx * dux + ty * duy;
+      cnt++;
+    }
+    if (cnt == 0) continue;
+    // K_I, K_II (displacement correlation), the kink angle and the
+    // equivalent K of the maximum tangential stress (tlsph_crack.h)
+    // (kfit j: their size from J, their ratio from the correlation)
+    const TLSPH::CrackK K = kfit == 1
+        ? TLSPH::displacement_correlation_offset(cnt, rr, jn, jt, Eprime)
+        : kfit == 2
+        ? TLSPH::k_from_j(Jt[a], TLSPH::displacement_correlation(cnt, rr, jn, jt, Eprime), Eprime)
+        : TLSPH::displacement_correlation(cnt, rr, jn, jt, Eprime);
+    const double KI = K.KI, KII = K.KII;
+    const double th = TLSPH::mts_kink_angle(KI, KII);
+    const double Keq = TLSPH::mts_equivalent_K(KI, KII, th);
+    Gt[a] = (Keq > 0.0) ? Keq * Keq / Eprime : 0.0;
+    Kt[2 * a] = KI;
+    Kt[2 * a + 1] = KII;
+    tht[a] = th;
+    tp.KI = KI, tp.KII = KII, tp.G = Gt[a], tp.kink = th;
+    tp.speed = 0.0;
+    if (Gt[a] < Gc || tp.seg != 0.0) continue;
+    // a new segment: the kink angle turns the direction of the faces that
+    // K was measured on (not the last segment's, which may already have turned)
+    const double fl = std::hypot(fr[0], fr[1]);
+    const double c = cos(th), sn = sin(th), f0 = fr[0] / fl, f1 = fr[1] / fl;
+    nd[2 * a] = c * f0 - sn * f1;
+    nd[2 * a + 1] = sn * f0 + c * f1;
+    want.push_back(a);
+  }
+  // the set-up force call of a run measures the tips but moves none: the
+  // last step of the run before moved them at these same positions, so a run
+  // split in two, or continued from a restart file, grows them as one run
+  if (update->setupflag) return;
+
+  // 'tipdir hoop': the new direction where the hoop stress on the circle of
+  // radius 2h about the tip is largest (within +-80 deg of the current
+  // direction; stresses interpolated over discs of radius h, which never
+  // reach the faces behind the tip)
+  // 'branch yoffe': a tip with G >= 2 G_c branches where the hoop stress
+  // about it has two maxima, one each side of its direction (Yoffe's
+  // instability of a fast crack); the branches take those two directions
+  std::vector<double> bdir(2 * nt, 0.0);
+  std::vector<int> bsplit(nt, 0);
+  const int yoffe = (branch < 0.0);
+  auto yoffe_candidate = [&](int a) {
+    return yoffe && Gt[a] >= 2.0 * Gc && list[a].own >= seglen;
+  };
+  bool need_hoop = false;
+  for (int a : want) need_hoop = need_hoop || tipdir_hoop || yoffe_candidate(a);
+  if (need_hoop) {
+    constexpr int NA = 33;
+    const double rs = 2.0 * pair->h, rh = pair->h, dth = 5.0 * M_PI / 180.0;
+    const int nw = want.size();
+    std::vector<double> hm(nw * NA * 4, 0.0), hs(nw * NA * 4, 0.0), ang(nw * NA);
+    for (int w = 0; w < nw; w++) {
+      const CrackTip &tp = list[want[w]];
+      const double phi0 = atan2(tp.t[1], tp.t[0]);
+      for (int j = 0; j < NA; j++) ang[w * NA + j] = phi0 + (j - NA / 2) * dth;
+    }
+    // each tip's sums over the particles near it, in ascending order
+    for (int w = 0; w < nw; w++) {
+      const auto &P = list[want[w]].path.back();
+      const double lo[2] = {P[0] - (rs + rh), P[1] - (rs + rh)}, hi[2] = {P[0] + rs + rh, P[1] + rs + rh};
+      particles_in_box(lo, hi, near);
+      for (int i : near) {
+        const double *X = pair->x0c[i];
+        bool have = false;
+        double sig[9];
+        const double ex = X[0] - P[0], ey = X[1] - P[1];
+        if (ex * ex + ey * ey > (rs + rh) * (rs + rh)) continue;
+        for (int j = 0; j < NA; j++) {
+          const double cx = P[0] + rs * cos(ang[w * NA + j]), cy = P[1] + rs * sin(ang[w * NA + j]);
+          const double r2 = (X[0] - cx) * (X[0] - cx) + (X[1] - cy) * (X[1] - cy);
+          if (r2 >= rh * rh) continue;
+          if (!have) {
+            pair->cauchy_stress(i, sig);
+            have = true;
+          }
+          const double wt = (1.0 - r2 / (rh * rh)) * (1.0 - r2 / (rh * rh));
+          double *H = hm.data() + 4 * (w * NA + j);
+          H[0] += wt;
+          H[1] += wt * sig[0];
+          H[2] += wt * sig[4];
+          H[3] += wt * sig[1];
+        }
+      }
+    }
+    MPI_Allreduce(hm.data(), hs.data(), nw * NA * 4, MPI_DOUBLE, MPI_SUM, world);
+    for (int w = 0; w < nw; w++) {
+      std::vector<double> hoop(NA, -1.0e300);
+      for (int j = 0; j < NA; j++) {
+        const double *H = hs.data() + 4 * (w * NA + j);
+        if (!(H[0] > 0.0)) continue;
+        const double sx = H[1] / H[0], sy = H[2] / H[0], sxy = H[3] / H[0];
+        hoop[j] = TLSPH::hoop_stress(sx, sy, sxy, ang[w * NA + j]);
+      }
+      // the angle of the maximum at sample jm (parabola through its neighbours)
+      auto peak = [&](int jm) {
+        double phi = ang[w * NA + jm];
+        if (jm > 0 && jm < NA - 1) {
+          const double y0 = hoop[jm - 1], y1 = hoop[jm], y2 = hoop[jm + 1];
+          const double den = y0 - 2.0 * y1 + y2;
+          if (den < 0.0) phi += 0.5 * dth * (y0 - y2) / den;
+        }
+        return phi;
+      };
+      const int a = want[w];
+      if (tipdir_hoop) {
+        int jm = 0;
+        for (int j = 1; j < NA; j++)
+          if (hoop[j] > hoop[jm]) jm = j;
+        const double phi = peak(jm);
+        nd[2 * a] = cos(phi);
+        nd[2 * a + 1] = sin(phi);
+      }
+      if (yoffe_candidate(a)) {
+        // a smooth profile and its maxima each side of the line (tlsph_crack.h)
+        const double phi0 = ang[w * NA + NA / 2];
+        double u[NA];
+        int okh[NA];
+        for (int j = 0; j < NA; j++) u[j] = ang[w * NA + j] - phi0, okh[j] = !(hoop[j] < -1.0e299);
+        const TLSPH::YoffeBranches yb = TLSPH::yoffe_branches(NA, u, hoop.data(), okh, 65);
+        const double *cf = yb.cf;
+        const double bl = yb.bl, br = yb.br, ul = yb.ul, ur = yb.ur;
+        if (getenv("TLSPH_TIP_TRACE") && comm->me == 0) {
+          std::string line = fmt::format("hoop-trace {} {} G/Gc {:.3f}:", update->ntimestep, a,
+                                         Gt[a] / Gc);
+          for (int j = 0; j < NA; j += 2) line += fmt::format(" {:.3g}", hoop[j]);
+          line += fmt::format(" | fit {:.3g} {:.3g} {:.3g} {:.3g} {:.3g} | maxima {:.1f} {:.1f}", cf[0],
+                              cf[1], cf[2], cf[3], cf[4], bl > 0 ? ul * 180 / M_PI : 0.0,
+                              br > 0 ? ur * 180 / M_PI : 0.0);
+          utils::logmesg(lmp, line + "\n");
+        }
+        if (yb.split) {
+          bdir[2 * a] = phi0 + ul;
+          bdir[2 * a + 1] = phi0 + ur;
+          bsplit[a] = 1;
+        }
+      }
+    }
+  }
+
+  std::vector<CrackTip> born;
+  std::vector<int> moved;
+  for (int a = 0; a < nt; a++) {
+    CrackTip &tp = list[a];
+    if (!tp.alive || Gt[a] < Gc) continue;
+    const double G = Gt[a];
+    const double v = TLSPH::freund_speed(G, Gc, cR);
+    tp.speed = v;
+    double P[2] = {tp.path.back()[0], tp.path.back()[1]};
+    if (tp.seg == 0.0) {
+      const double t0 = nd[2 * a], t1 = nd[2 * a + 1];
+      if (comm->me == 0 && !tp.growing)
+        utils::logmesg(lmp, "pair tlsph/damage: step {} t {:.6g}: tip {} at ({:.6g}, {:.6g}) "
+                            "grows, K_I {:.4g} K_II {:.4g} kink {:.2f} deg\n", update->ntimestep,
+                       update->atime + (update->ntimestep - update->atimestep) * dt, a, P[0], P[1],
+                       Kt[2 * a], Kt[2 * a + 1], tht[a] * 180.0 / M_PI);
+      tp.growing = 1;
+      if ((branch > 0.0 && G >= 2.0 * Gc && tp.own >= seglen) || bsplit[a]) {
+        for (int sgn = -1; sgn <= 1; sgn += 2) {
+          CrackTip b = tp;
+          if (bsplit[a]) {
+            const double phi = bdir[2 * a + (sgn > 0 ? 1 : 0)];
+            b.t[0] = cos(phi);
+            b.t[1] = sin(phi);
+          } else {
+            const double cb = cos(sgn * branch), sb = sin(sgn * branch);
+            b.t[0] = cb * t0 - sb * t1;
+            b.t[1] = sb * t0 + cb * t1;
+          }
+          b.path.push_back({P[0], P[1]});
+          // its first segment keeps the branching direction (seg > 0)
+          b.seg = 1.0e-300;
+          b.own = 0.0;
+          born.push_back(b);
+        }
+        tp.alive = 0;
+        if (comm->me == 0)
+          utils::logmesg(lmp, "pair tlsph/damage: step {} tip {} at ({:.6g}, {:.6g}) branches "
+                              "(G {:.4g} = {:.3f} G_c)\n", update->ntimestep, a, P[0], P[1], G,
+                         G / Gc);
+        continue;
+      }
+      tp.t[0] = t0;
+      tp.t[1] = t1;
+      tp.path.push_back({P[0], P[1]});
+      if (comm->me == 0 && getenv("TLSPH_TIP_TRACE"))
+        utils::logmesg(lmp, "tip-trace {} {} {:.6g} {:.6g} {:.4g} {:.4g} {:.4g} {:.3f} {:.2f}\n",
+                       update->ntimestep, a, P[0], P[1], Kt[2 * a], Kt[2 * a + 1], G / Gc,
+                       v / cR, atan2(t1, t0) * 180.0 / M_PI);
+    }
+    const double da = v * dt;
+    const double Pn[2] = {P[0] + da * tp.t[0], P[1] + da * tp.t[1]};
+    pair->cut_path(P, Pn);
+    tp.path.back() = {Pn[0], Pn[1]};
+    tp.seg += da;
+    tp.own += da;
+    if (tp.seg >= seglen) tp.seg = 0.0;
+    moved.push_back(a);
+  }
+  // new branches take their first step next time; live list that left the body stop
+  for (auto &b : born) list.push_back(b);
+  if (!born.empty()) {
+    int nlive = 0;
+    for (const auto &tp : list) nlive += tp.alive;
+    if (nlive > 1000)
+      error->all(FLERR, "pair tlsph/damage: step {}: {} live crack list (branching runs away; "
+                        "with 'branch A' every tip with G >= 2 G_c splits): stopped", update->ntimestep,
+                 nlive);
+  }
+  if (!moved.empty()) {
+    std::vector<std::array<double, 2>> pts;
+    for (int a : moved) pts.push_back(list[a].path.back());
+    std::vector<double> vol;
+    volume_near(pts, pair->h, vol);
+    for (size_t p = 0; p < moved.size(); p++)
+      if (vol[p] < 0.4 * M_PI * pair->h * pair->h * depth) {
+        list[moved[p]].alive = 0;
+        if (comm->me == 0)
+          utils::logmesg(lmp, "pair tlsph/damage: step {} tip {} stops at ({:.6g}, {:.6g}), "
+                              "outside the body\n", update->ntimestep, moved[p], pts[p][0], pts[p][1]);
+      }
+  }
+}

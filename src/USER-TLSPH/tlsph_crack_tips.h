@@ -1,0 +1,101 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   USER-TLSPH: the crack tips of crack-tip tracking (pair_style tlsph/damage
+   criterion tip; doc/pair_tlsph_damage.rst, "Crack-tip tracking").
+
+   TLSPHCrackTips owns the tips: their settings (the tip keywords of the
+   pair style), their paths in the reference configuration (identical on
+   every MPI rank), their restart, and each step's measurement and growth
+   (grow). The mechanics it applies, with no LAMMPS in them, are in
+   tlsph_crack.h: the stress intensity factors (displacement correlation,
+   domain J-integral), the kink rule, the speed law and the branching rule.
+   The damage style keeps the bonds: a tip that grows asks it to cut the
+   bonds its new piece of path crosses (PairTLSPHDamage::cut_path), and it
+   reads the particles' fields through the style.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_TLSPH_CRACK_TIPS_H
+#define LMP_TLSPH_CRACK_TIPS_H
+
+#include "pointers.h"
+
+#include <array>
+#include <cstdio>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class PairTLSPHDamage;
+
+// one crack tip: its path (vertices, the last one the tip) and its state
+struct CrackTip {
+  std::vector<std::array<double, 2>> path;    // vertices, the last one is the tip
+  double t[2];                                // direction of the current segment
+  double seg;                                 // length grown on the current segment
+  double own;                                 // length grown since the tip was born
+  int alive, growing;
+  // at the last force evaluation (not in restart files: measured every step)
+  double KI = 0.0, KII = 0.0;    // stress intensity factors
+  double G = 0.0;                // energy release rate of the kink direction
+  double kink = 0.0;             // kink angle of the maximum tangential stress [rad]
+  double speed = 0.0;            // advance speed (0: not growing)
+};
+
+class TLSPHCrackTips : protected Pointers {
+ public:
+  TLSPHCrackTips(LAMMPS *lmp, PairTLSPHDamage *pair);
+
+  // the settings: defaults, then the tip keyword at arg[iarg] (returns the
+  // number of words it took, 0 if arg[iarg] is not a tip keyword)
+  void defaults();
+  int parse(int narg, char **arg, int iarg);
+  // restart: the settings (and the pair's tipmode) and every tip with its path
+  void write_restart(FILE *fp, int tipmode);
+  int read_restart(FILE *fp);    // returns tipmode
+  // from the pair's init_style: the material's E', G_c and Rayleigh speed
+  void init(double Eprime, double Gc, double cR);
+  // every step before the deformation pass: the tips found (first call),
+  // measured, turned, grown and split
+  void grow();
+
+  const std::vector<CrackTip> &tips() const { return list; }
+  double fracture_energy() const { return Gc; }
+
+  // the local particles whose reference position lies in [lo, hi] (xy),
+  // ascending (cells rebuilt when the bond cache is)
+  void particles_in_box(const double *lo, const double *hi, std::vector<int> &out);
+
+  // settings (the pair_style keywords)
+  int tipdir_hoop;  // tipdir: 0 kink angle from K_I, K_II, 1 largest hoop stress
+  int kfit;         // K: 0 fit anchored at the path's end, 1 with the tip's offset fitted,
+                    // 2 size from the domain J-integral (ratio: fit 0)
+  double jr1, jr2;  // kfit j: the J domain's ring, q = 1 inside r1, 0 beyond r2 [h]
+  double seg;       // segment length in h (0: the sampling reach)
+  double branch;    // half angle of a branching [rad] (0: never; < 0: 'yoffe')
+
+ private:
+  PairTLSPHDamage *pair;
+  std::vector<CrackTip> list;
+  int ready, depth_ready;
+  double Eprime, Gc, cR, depth;
+  void measure_depth();
+
+  // the local particles in square cells of their reference positions (xy),
+  // so that the tip work visits only the particles near a tip: rebuilt when
+  // the bond cache is (the particle indices change only at neighbor builds)
+  struct RefCells {
+    double lo[2] = {0.0, 0.0}, cs = 1.0;
+    int nx = 0, ny = 0;
+    std::vector<int> start, idx;    // cell c holds idx[start[c] .. start[c + 1]), ascending
+    std::array<int, 2> stamp = {-1, -1};
+  } cells;
+  void refresh_cells();
+  void volume_near(const std::vector<std::array<double, 2>> &pts, double R, std::vector<double> &vol);
+
+  void j_integrals(const std::vector<int> &live, std::vector<double> &J);
+
+  void find_tips();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
