@@ -142,8 +142,8 @@ void PairTLSPHDamage::settings(int narg, char **arg)
     }
   }
   if (have_branch && !tipmode)
-    error->all(FLERR, "pair_style tlsph/damage: branch, tipdir, tipseg, kfit and jring are "
-                      "settings of 'criterion tip'");
+    error->all(FLERR, "pair_style tlsph/damage: branch, tipdir, tipseg, kfit, jring and "
+                      "tipparam are settings of 'criterion tip'");
   PairTLSPH::settings((int) base.size(), base.data());
   // the thesis's fracture model uses the linear correction: keep it the default
   if (!have_gradient) order = 1;

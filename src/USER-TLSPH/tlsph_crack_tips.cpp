@@ -37,6 +37,11 @@ void TLSPHCrackTips::defaults()
   jr2 = 4.0;
   seg = 0.0;
   branch = 0.0;
+  p_sample = 1.5;
+  p_disc = 1.5;
+  p_hoopr = 2.0;
+  p_window = 65;
+  p_split = 1.0;
 }
 
 /* the tip keywords of pair_style tlsph/damage: tipdir faces|hoop,
@@ -74,6 +79,28 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
                         "r2, got {} {}", arg[iarg + 1], arg[iarg + 2]);
     return 3;
   }
+  if (key == "tipparam") {
+    if (iarg + 2 >= narg)
+      error->all(FLERR, "pair_style tlsph/damage: tipparam needs a name and a value (names: "
+                        "sample, disc, hoopr, window, split)");
+    const std::string name = arg[iarg + 1];
+    const double val = TLSPHInput::number(error, "pair_style tlsph/damage", "tipparam " + name, arg[iarg + 2]);
+    if (name == "sample" || name == "disc" || name == "hoopr" || name == "split") {
+      if (!(val > 0.0 && val < 100.0))
+        error->all(FLERR, "pair_style tlsph/damage: tipparam {} must be > 0 and < 100 (in h, or "
+                          "in segments for split), got {}", name, arg[iarg + 2]);
+      (name == "sample" ? p_sample : name == "disc" ? p_disc : name == "hoopr" ? p_hoopr : p_split) = val;
+    } else if (name == "window") {
+      if (!(val >= 1.0 && val <= 80.0 && val == std::floor(val)))
+        error->all(FLERR, "pair_style tlsph/damage: tipparam window must be a whole number of "
+                          "degrees in [1, 80], got {}", arg[iarg + 2]);
+      p_window = (int) val;
+    } else {
+      error->all(FLERR, "pair_style tlsph/damage: tipparam name must be sample, disc, hoopr, "
+                        "window or split, got '{}'", name);
+    }
+    return 3;
+  }
   if (key == "tipseg") {
     if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: tipseg needs a value");
     seg = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
@@ -108,11 +135,11 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
 
 void TLSPHCrackTips::write_restart(FILE *fp, int tipmode)
 {
-  double w[6] = {(double) tipmode + 2.0, (double) (tipdir_hoop + 2 * kfit), seg, branch,
+  double w[6] = {(double) tipmode + 4.0, (double) (tipdir_hoop + 2 * kfit), seg, branch,
                  (double) ready, (double) list.size()};
   fwrite(w, sizeof(double), 6, fp);
-  const double jr[2] = {jr1, jr2};
-  fwrite(jr, sizeof(double), 2, fp);
+  const double jr[7] = {jr1, jr2, p_sample, p_disc, p_hoopr, (double) p_window, p_split};
+  fwrite(jr, sizeof(double), 7, fp);
   for (const auto &tp : list) {
     std::vector<double> r = {(double) tp.path.size(), tp.t[0], tp.t[1], tp.seg, tp.own,
                              (double) tp.alive, (double) tp.growing};
@@ -126,31 +153,37 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   double w[6];
   if (comm->me == 0) utils::sfread(FLERR, w, sizeof(double), 6, fp, nullptr, error);
   MPI_Bcast(w, 6, MPI_DOUBLE, 0, world);
-  const bool with_ring = (w[0] >= 2.0);
-  if (with_ring) w[0] -= 2.0;
+  // layouts: tipmode + 4: the ring and the tipparam values follow; + 2: the
+  // ring only; tipmode alone: neither (the defaults)
+  const int extra = (w[0] >= 4.0) ? 7 : (w[0] >= 2.0) ? 2 : 0;
+  if (extra == 7) w[0] -= 4.0;
+  else if (extra == 2) w[0] -= 2.0;
   if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 5.0 && w[1] == std::floor(w[1])) &&
         w[2] >= 0.0 && w[3] < 2.0 && (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 &&
         w[5] == std::floor(w[5]) && w[5] < 1.0e7))
     error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
                       "version's layout (written by another version of the package?)");
   const int tipmode = static_cast<int>(w[0]);
+  defaults();    // what an older layout does not carry
   tipdir_hoop = static_cast<int>(w[1]) % 2;
   kfit = static_cast<int>(w[1]) / 2;
   seg = w[2];
   branch = w[3];
   ready = static_cast<int>(w[4]);
   depth_ready = 0;
-  jr1 = 2.0;
-  jr2 = 4.0;
-  if (with_ring) {
-    double jr[2];
-    if (comm->me == 0) utils::sfread(FLERR, jr, sizeof(double), 2, fp, nullptr, error);
-    MPI_Bcast(jr, 2, MPI_DOUBLE, 0, world);
-    if (!(jr[0] >= 0.0 && jr[1] > jr[0] && jr[1] < 1.0e3))
+  if (extra) {
+    double jr[7];
+    if (comm->me == 0) utils::sfread(FLERR, jr, sizeof(double), extra, fp, nullptr, error);
+    MPI_Bcast(jr, extra, MPI_DOUBLE, 0, world);
+    if (!(jr[0] >= 0.0 && jr[1] > jr[0] && jr[1] < 1.0e3) ||
+        (extra == 7 && !(jr[2] > 0.0 && jr[3] > 0.0 && jr[4] > 0.0 && jr[5] >= 1.0 && jr[6] > 0.0)))
       error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
                         "version's layout (written by another version of the package?)");
     jr1 = jr[0];
     jr2 = jr[1];
+    if (extra == 7) {
+      p_sample = jr[2], p_disc = jr[3], p_hoopr = jr[4], p_window = (int) jr[5], p_split = jr[6];
+    }
   }
   list.assign(static_cast<size_t>(w[5]), CrackTip{});
   for (auto &tp : list) {
@@ -417,9 +450,9 @@ void TLSPHCrackTips::grow()
   const int nt = list.size();
   if (!nt) return;
   constexpr int NK = 4;
-  const double rho = 1.5 * pair->h;
+  const double rho = p_disc * pair->h;
   double rk[NK];
-  for (int k = 0; k < NK; k++) rk[k] = (1.5 + 0.5 * k) * pair->h;
+  for (int k = 0; k < NK; k++) rk[k] = (p_sample + 0.5 * k) * pair->h;
   // a segment keeps its direction until the samples lie on it
   const double seglen = seg > 0.0 ? seg * pair->h : rk[NK - 1] + rho;
   // sample points and the face normal there, walking back along each path
@@ -564,13 +597,13 @@ void TLSPHCrackTips::grow()
   std::vector<int> bsplit(nt, 0);
   const int yoffe = (branch < 0.0);
   auto yoffe_candidate = [&](int a) {
-    return yoffe && Gt[a] >= 2.0 * Gc && list[a].own >= seglen;
+    return yoffe && Gt[a] >= 2.0 * Gc && list[a].own >= p_split * seglen;
   };
   bool need_hoop = false;
   for (int a : want) need_hoop = need_hoop || tipdir_hoop || yoffe_candidate(a);
   if (need_hoop) {
     constexpr int NA = 33;
-    const double rs = 2.0 * pair->h, rh = pair->h, dth = 5.0 * M_PI / 180.0;
+    const double rs = p_hoopr * pair->h, rh = pair->h, dth = 5.0 * M_PI / 180.0;
     const int nw = want.size();
     std::vector<double> hm(nw * NA * 4, 0.0), hs(nw * NA * 4, 0.0), ang(nw * NA);
     for (int w = 0; w < nw; w++) {
@@ -640,7 +673,7 @@ void TLSPHCrackTips::grow()
         double u[NA];
         int okh[NA];
         for (int j = 0; j < NA; j++) u[j] = ang[w * NA + j] - phi0, okh[j] = !(hoop[j] < -1.0e299);
-        const TLSPH::YoffeBranches yb = TLSPH::yoffe_branches(NA, u, hoop.data(), okh, 65);
+        const TLSPH::YoffeBranches yb = TLSPH::yoffe_branches(NA, u, hoop.data(), okh, p_window);
         const double *cf = yb.cf;
         const double bl = yb.bl, br = yb.br, ul = yb.ul, ur = yb.ur;
         if (getenv("TLSPH_TIP_TRACE") && comm->me == 0) {
@@ -678,7 +711,7 @@ void TLSPHCrackTips::grow()
                        update->atime + (update->ntimestep - update->atimestep) * dt, a, P[0], P[1],
                        Kt[2 * a], Kt[2 * a + 1], tht[a] * 180.0 / M_PI);
       tp.growing = 1;
-      if ((branch > 0.0 && G >= 2.0 * Gc && tp.own >= seglen) || bsplit[a]) {
+      if ((branch > 0.0 && G >= 2.0 * Gc && tp.own >= p_split * seglen) || bsplit[a]) {
         for (int sgn = -1; sgn <= 1; sgn += 2) {
           CrackTip b = tp;
           if (bsplit[a]) {

@@ -71,6 +71,12 @@ class TLSPHCrackTips : protected Pointers {
   double jr1, jr2;  // kfit j: the J domain's ring, q = 1 inside r1, 0 beyond r2 [h]
   double seg;       // segment length in h (0: the sampling reach)
   double branch;    // half angle of a branching [rad] (0: never; < 0: 'yoffe')
+  // tipparam: the tip model's numerical constants (scanned in bench/tipconst.md)
+  double p_sample;  // start of the K samples behind the tip [h] (samples every 0.5 h, 4)
+  double p_disc;    // radius of each sample's kernel disc [h]
+  double p_hoopr;   // radius of the circle the hoop stress is read on [h]
+  int p_window;     // branch yoffe: largest angle of a branch from the line [deg]
+  double p_split;   // a tip may split once it has grown this many segments
 
  private:
   PairTLSPHDamage *pair;
