@@ -25,6 +25,7 @@ export LMP_TLSPH="$LMP"
 SETTINGS="tipc-seg-2.25 tipc-seg-9 tipc-sample-0.75 tipc-sample-3 tipc-disc-0.75 tipc-disc-3
   tipc-hoopr-1 tipc-hoopr-4 tipc-window-33 tipc-window-80 tipc-split-0.5 tipc-split-2"
 export KDX="${KDX-1.0}" BDX="${BDX-0.5}" NO_REPORT=1
+mkdir -p "$HERE/out"
 # two settings at a time on two cores (each runs both decks)
 set -- tip-yoffe $SETTINGS
 while [ $# -gt 0 ]; do
