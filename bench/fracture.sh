@@ -139,12 +139,14 @@ vars_of() {    # setting [kalthoff|branching]
 }
 
 # dx in mm as written (1.67 means 5/3 mm, 1.33 4/3, 1.11 10/9, 0.833 5/6,
-# 0.667 2/3, 0.333 1/3: the lattice must fit the plates exactly) -> metres
+# 0.667 2/3, 0.333 1/3, 0.286 2/7, 0.222 2/9: the lattice must fit the
+# plates exactly) -> metres
 dx_m() {
   case "$1" in
     1.67) echo 0.00166666666666667 ;; 1.33) echo 0.00133333333333333 ;;
     1.11) echo 0.00111111111111111 ;; 0.833) echo 0.000833333333333333 ;;
     0.667) echo 0.000666666666666667 ;; 0.333) echo 0.000333333333333333 ;;
+    0.286) echo 0.000285714285714286 ;; 0.222) echo 0.000222222222222222 ;;
     *) "$PY" -c "print(float('$1') * 1e-3)" ;;
   esac
 }
