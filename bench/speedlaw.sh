@@ -32,14 +32,11 @@ for kfit in $KFITS; do
     done
   done
 done
-KFITS="$KFITS" python3 - "$OUT" "$commit" > "$HERE/speedlaw.md" <<'PY'
-import os, re, sys, datetime
+KFITS="$KFITS" BENCH="$HERE" python3 - "$OUT" "$commit" > "$HERE/speedlaw.md" <<'PY'
+import datetime, os, sys
+sys.path.insert(0, os.environ["BENCH"])
+from strip_speed import measure
 out, commit = sys.argv[1], sys.argv[2]
-
-def fit(t, y):
-    n = len(t)
-    mt, my = sum(t) / n, sum(y) / n
-    return sum((a - mt) * (b - my) for a, b in zip(t, y)) / sum((a - mt) ** 2 for a in t)
 
 print("# The speed law of `criterion tip` against theory (bench/speedlaw.sh)\n")
 print("- date: %s, commit `%s`" % (datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), commit))
@@ -55,19 +52,7 @@ for kfit in os.environ["KFITS"].split():
     for dx in ("0.0005", "0.000333333333333"):
         for r in ("1.25", "1.5", "2.0"):
             tag = "%s-%s-%s" % (kfit, dx, r)
-            log = open("%s/%s.log" % (out, tag)).read()
-            cR = float(re.search(r"c_R ([0-9.e+]+)", log).group(1))
-            t, y = [], []
-            for line in open("%s/%s.dat" % (out, tag)):
-                if line.startswith("#"):
-                    continue
-                c = line.split()
-                if 0.025 < float(c[4]) < 0.045:
-                    t.append(float(c[0]))
-                    y.append(float(c[4]))
-            v = fit(t, y) / cR if len(t) > 2 else float("nan")
-            g = [float(l.split()[7]) for l in log.splitlines()
-                 if l.startswith("tip-trace") and 0.025 < float(l.split()[3]) < 0.045]
+            v, g = measure("%s/%s" % (out, tag))
             gm = sum(g) / len(g) if g else float("nan")
             th = 1.0 - 1.0 / float(r)
             print("| %s | %.3f | %s | %.3f | %.3f | %+.3f | %.2f | %d |" % (
