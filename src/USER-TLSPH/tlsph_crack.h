@@ -140,8 +140,10 @@ inline double mts_equivalent_K(double KI, double KII, double theta)
    no traction, so no line integral remains. The second integral is zero
    for a static field, and for a crack running steadily (the field moves
    with the tip: v = -V u_,1, a = V^2 u_,11); it is the inertia of a field
-   that changes as it moves. For a particle method A is a sum over the
-   particles' volumes; the integrand of one particle is
+   that changes as it moves; the crack tips leave it out (it needs each
+   particle's acceleration, a history: tlsph_crack_tips.cpp), so
+   j_integrand below is the first integral only. For a particle method A is
+   a sum over the particles' volumes; the integrand of one particle is
    j_integrand(...) (3 x 3 row-major tensors, z rows and columns zero in
    2D but F_33). In linear elasticity J = (K_I^2 + K_II^2) / E' for a crack
    at rest. */
@@ -159,24 +161,19 @@ inline double ring_weight(double r, double r1, double r2, double *dqdr)
   return (r2 - r) / (r2 - r1);
 }
 
-// one particle's integrand; gq = grad q (reference frame), e unit, 3 components each
+// one particle's integrand; gq = grad q (reference frame), e unit, v its
+// velocity, 3 components each
 inline double j_integrand(const double *F, const double *P, double W, double rho0,
-                          const double *v, const double *a, const double *L, const double *e,
-                          const double *gq, double q)
+                          const double *v, const double *e, const double *gq)
 {
-  double He[3], Le[3];    // u_,1 and v_,1 along e
-  for (int i = 0; i < 3; i++) {
-    He[i] = (F[3 * i] - (i == 0 ? 1.0 : 0.0)) * e[0] + (F[3 * i + 1] - (i == 1 ? 1.0 : 0.0)) * e[1] +
-        (F[3 * i + 2] - (i == 2 ? 1.0 : 0.0)) * e[2];
-    Le[i] = L[3 * i] * e[0] + L[3 * i + 1] * e[1] + L[3 * i + 2] * e[2];
-  }
   const double T = 0.5 * rho0 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   double j = -(W + T) * (e[0] * gq[0] + e[1] * gq[1] + e[2] * gq[2]);
-  for (int i = 0; i < 3; i++)
-    j += He[i] * (P[3 * i] * gq[0] + P[3 * i + 1] * gq[1] + P[3 * i + 2] * gq[2]);
-  if (q != 0.0)
-    j += rho0 * q *
-        (a[0] * He[0] + a[1] * He[1] + a[2] * He[2] - v[0] * Le[0] - v[1] * Le[1] - v[2] * Le[2]);
+  for (int i = 0; i < 3; i++) {
+    // u_i,K e_K
+    const double He = (F[3 * i] - (i == 0 ? 1.0 : 0.0)) * e[0] +
+        (F[3 * i + 1] - (i == 1 ? 1.0 : 0.0)) * e[1] + (F[3 * i + 2] - (i == 2 ? 1.0 : 0.0)) * e[2];
+    j += He * (P[3 * i] * gq[0] + P[3 * i + 1] * gq[1] + P[3 * i + 2] * gq[2]);
+  }
   return j;
 }
 

@@ -382,7 +382,6 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, std::vector<doubl
   double **x = atom->x, **v = atom->v;
   const double *vfrac = atom->vfrac, *rmass = atom->rmass;
   const double r1 = jr1 * pair->h, r2 = jr2 * pair->h;
-  const double z3[3] = {0.0, 0.0, 0.0}, z9[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   const auto xr = TLSPH::StridedRows{x[0], 3};
   // each domain's particles, and its momentum and mass (all ranks): J is
   // taken in the frame of the domain's mean velocity. In that of the
@@ -419,7 +418,7 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, std::vector<doubl
       double dq;
       TLSPH::ring_weight(r, r1, r2, &dq);
       const double gq[3] = {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, 0.0};
-      if (dq == 0.0) continue;    // (the inertia term, which needs q, is left out: above)
+      if (dq == 0.0) continue;    // (the inertia term, the only one with q, is left out: above)
       double F[9], P[9];
       const int nb = pair->nbond[i];
       if (pair->dim == 2) TLSPH::deformation_gradient_bonds<2>(xr, i, pair->bonds_of<2>(i), nb, F);
@@ -427,7 +426,7 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, std::vector<doubl
       const double W = pair->pk1_stress(i, F, P);
       const double rho0 = rmass[i] / vfrac[i];
       const double vr[3] = {v[i][0] - vm[0], v[i][1] - vm[1], v[i][2] - vm[2]};
-      mine[a] += vfrac[i] * TLSPH::j_integrand(F, P, W, rho0, vr, z3, z9, e, gq, 0.0);
+      mine[a] += vfrac[i] * TLSPH::j_integrand(F, P, W, rho0, vr, e, gq);
     }
   }
   MPI_Allreduce(mine.data(), J.data(), nt, MPI_DOUBLE, MPI_SUM, world);

@@ -214,7 +214,7 @@ double williams_j(double KI, double KII, double beta, double r1, double r2, doub
   const double E = 32e9, nu = 0.2, mu = E / (2 * (1 + nu)), lam = 2 * mu * nu / (1 - 2 * nu);
   const double kappa = 3 - 4 * nu;
   const double cb = std::cos(beta), sb = std::sin(beta);
-  const double e[3] = {cb, sb, 0.0}, zero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const double e[3] = {cb, sb, 0.0};
   const int n = (int) std::ceil(r2 / d) + 1;
   double J = 0.0;
   for (int a = -n; a < n; a++)
@@ -252,10 +252,10 @@ double williams_j(double KI, double KII, double beta, double r1, double r2, doub
       }
       for (int k = 0; k < 9; k++) F[k] = H[k] + ((k % 4) == 0 ? 1.0 : 0.0);
       double dq;
-      const double q = TLSPH::ring_weight(r, r1, r2, &dq);
+      TLSPH::ring_weight(r, r1, r2, &dq);
       const double gq[3] = {dq * (cb * xl - sb * yl) / r, dq * (sb * xl + cb * yl) / r, 0.0};
       const double v0[3] = {0, 0, 0};
-      J += d * d * TLSPH::j_integrand(F, sig, W, 2450.0, v0, v0, zero, e, gq, q);
+      J += d * d * TLSPH::j_integrand(F, sig, W, 2450.0, v0, e, gq);
     }
   return J;
 }
