@@ -328,7 +328,7 @@ double FixTLSPHBonds::memory_usage()
 {
   const double n = atom->nmax;
   return 2.0 * n * (sizeof(int) + 4.0 * sizeof(double)) +
-      n * maxpartner * (sizeof(tagint) + sizeof(int));
+      n * maxpartner * (sizeof(tagint) + sizeof(unsigned char));
 }
 
 void FixTLSPHBonds::grow_arrays(int nmax)
@@ -421,7 +421,7 @@ int FixTLSPHBonds::unpack_exchange(int nlocal, double *buf)
   work_visc[nlocal] = buf[m++];
   for (int n = 0; n < npartner[nlocal]; n++) {
     partner[nlocal][n] = (tagint) ubuf(buf[m++]).i;
-    state[nlocal][n] = static_cast<int>(buf[m++]);
+    state[nlocal][n] = static_cast<unsigned char>(buf[m++]);
   }
   for (int k = 0; k < (nfrozen ? 1 + nfrozen : 0); k++) frozen[nlocal][k] = buf[m++];
   return m;

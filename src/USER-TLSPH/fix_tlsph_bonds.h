@@ -3,8 +3,8 @@
 
    Created by pair_style tlsph (style name TLSPH_BONDS, like PERI_NEIGH).
    Per atom: the global IDs of the partners found within the kernel support
-   2h in the reference configuration at the first run, and one state word
-   per bond (intact or broken). The rows migrate with their atom and are
+   2h in the reference configuration at the first run, and one state byte
+   per bond (intact, broken or pre-cracked). The rows migrate with their atom and are
    written to restart files; nothing else about a bond needs to be kept,
    because the geometric bond data are recomputed from x0 on every
    reneighboring (see PairTLSPH::build_bond_cache).
@@ -69,7 +69,7 @@ class FixTLSPHBonds : public Fix {
   int *npartner;        // # of partners of each atom
   int *nintact0;        // # of partners at setup (denominator of the damage)
   tagint **partner;     // global IDs of partners
-  int **state;          // INTACT or BROKEN, per bond
+  unsigned char **state;    // BROKEN, INTACT or PRECRACKED, per bond (one byte)
   // gradient correction frozen at setup (pair tlsph/damage 'correction
   // setup'): per atom [0] = 1 once set, then the correction matrix Q. It
   // migrates and restarts with the atom, so it never depends on which

@@ -597,6 +597,12 @@ void PairTLSPH::init_style()
   // forward communication: the packed rows; R only for the gather form
   // (newton_pair off, or the SIMD step), which alone reads it
   select_simd();
+  bond_values_kept = keeps_bond_values();
+  if (!bond_values_kept) {
+    memory->destroy(lean.g);
+    memory->destroy(lean.w);
+    ngw_max = 0;
+  }
   ell_version = -1;
   ell_nrefill = ell_nrelaid = 0;
   ell_nscreened = ell_nskipped = 0;
@@ -717,29 +723,42 @@ double PairTLSPH::max_wave_speed() const
 
 void PairTLSPH::grow_peratom()
 {
-  nmax = atom->nmax;
-  memory->destroy(Q);
-  memory->destroy(sumg);
-  memory->destroy(F);
-  memory->destroy(P);
-  memory->destroy(fown);
-  memory->destroy(pk);
-  memory->destroy(psi);
-  memory->destroy(ehg);
-  memory->destroy(nbond);
-  memory->destroy(nlead);
-  memory->destroy(x0c);
-  memory->create(Q, nmax, correction_size(), "tlsph:Q");    // DIM x basis size, <= QMAX
-  memory->create(sumg, nmax, 3, "tlsph:sumg");
-  memory->create(F, nmax, 9, "tlsph:F");
-  memory->create(P, nmax, 9, "tlsph:P");
-  memory->create(fown, nmax, 3, "tlsph:fown");
-  memory->create(pk, nmax, packed_size(), "tlsph:packed");
-  memory->create(psi, nmax, "tlsph:psi");
-  memory->create(ehg, nmax, "tlsph:ehg");
-  memory->create(nbond, nmax, "tlsph:nbond");
-  memory->create(nlead, nmax, "tlsph:nlead");
-  memory->create(x0c, nmax, 3, "tlsph:x0c");
+  /* rows for the local and ghost particles (+1/32): not atom->nmax, which
+     LAMMPS grows in steps of 16384 (36 % above the particle count of a
+     36,100-particle block); nothing here migrates with an atom, and the
+     count changes only at a reneighboring (peratom_rows_short). memory->grow
+     keeps the rows that exist (init_style sets nmax = 0: the rows change
+     width, and are made anew) */
+  const int nall = atom->nlocal + atom->nghost;
+  const int fresh = (nmax == 0);
+  nmax = nall + nall / 32 + 16;
+  if (fresh) {
+    memory->destroy(Q);
+    memory->destroy(sumg);
+    memory->destroy(F);
+    memory->destroy(P);
+    memory->destroy(fown);
+    memory->destroy(pk);
+    memory->destroy(psi);
+    memory->destroy(ehg);
+    memory->destroy(nbond);
+    memory->destroy(nlead);
+    memory->destroy(x0c);
+  }
+  // Q: DIM x basis size, <= QMAX; without bond_values_kept the SIMD
+  // layout's columns hold it (q_build until build_ell)
+  if (bond_values_kept) memory->grow(Q, nmax, correction_size(), "tlsph:Q");
+  else memory->destroy(Q);
+  memory->grow(sumg, nmax, 3, "tlsph:sumg");
+  memory->grow(F, nmax, 9, "tlsph:F");
+  memory->grow(P, nmax, 9, "tlsph:P");
+  memory->grow(fown, nmax, 3, "tlsph:fown");
+  memory->grow(pk, nmax, packed_size(), "tlsph:packed");
+  memory->grow(psi, nmax, "tlsph:psi");
+  memory->grow(ehg, nmax, "tlsph:ehg");
+  memory->grow(nbond, nmax, "tlsph:nbond");
+  memory->grow(nlead, nmax, "tlsph:nlead");
+  memory->grow(x0c, nmax, 3, "tlsph:x0c");
 }
 
 /* x0c: the reference positions of local and ghost particles, shifted by
@@ -767,18 +786,22 @@ void PairTLSPH::set_reference_images()
 void PairTLSPH::reserve_bond_cache(int nbonds)
 {
   if (nbonds > ncache_max) {
-    ncache_max = nbonds + nbonds / 8 + 16;
+    ncache_max = nbonds + nbonds / 32 + 16;
     memory->destroy(lean.j);
-    memory->destroy(lean.g);
-    memory->destroy(lean.w);
     memory->destroy(lean.k);
     memory->create(lean.j, ncache_max, "tlsph:bond_j");
-    memory->create(lean.g, (bigint) ncache_max * dim, "tlsph:bond_g");
-    memory->create(lean.w, (bigint) ncache_max * 2, "tlsph:bond_w");
     memory->create(lean.k, ncache_max, "tlsph:bond_k");
   }
+  // the values only where they are kept (bond_values_kept)
+  if (bond_values_kept && ngw_max < ncache_max) {
+    ngw_max = ncache_max;
+    memory->destroy(lean.g);
+    memory->destroy(lean.w);
+    memory->create(lean.g, ngw_max * dim, "tlsph:bond_g");
+    memory->create(lean.w, ngw_max * 2, "tlsph:bond_w");
+  }
   if (atom->nlocal + 1 > nstart_max) {
-    nstart_max = atom->nmax + 1;
+    nstart_max = atom->nlocal + 1 + atom->nlocal / 32 + 16;
     memory->destroy(bond_start);
     memory->create(bond_start, nstart_max, "tlsph:bond_start");
   }
@@ -802,7 +825,7 @@ void PairTLSPH::resolve_bonds(bool shepard_sum, double &shepard_max, int &shepar
   double **x0 = atom->x0;
   double *vfrac = atom->vfrac;
   tagint *tag = atom->tag;
-  if (atom->nmax > nmax) grow_peratom();
+  if (peratom_rows_short()) grow_peratom();
   set_reference_images();
 
   int total = 0;
@@ -821,7 +844,7 @@ void PairTLSPH::resolve_bonds(bool shepard_sum, double &shepard_max, int &shepar
     const int np = bonds->npartner[i];
     double shepard = kernel_scale * vfrac[i] * kernel.value(0.0);
     tagint *partner = bonds->partner[i];
-    int *state = bonds->state[i];
+    const unsigned char *state = bonds->state[i];
     int n = 0;
     for (int pass = 0; pass < 3; pass++) {
       if (pass == 2 && !correction_from_all_partners) break;
@@ -882,6 +905,11 @@ void PairTLSPH::build_bond_cache()
   const double kernel_scale = (dim == 2) ? 1.0 / thickness : 1.0;
   std::vector<double> vj(bonds->maxpartner);
   std::vector<BondCache> scratch(bonds->maxpartner);
+  // the values of one particle when they are not kept (the SIMD layout gets
+  // them in build_ell), and then Q too, in LAMMPS's order until build_ell
+  std::vector<double> gone, wone;
+  const int qsz = correction_size();
+  if (!bond_values_kept) q_build.assign((size_t) qsz * nlocal, 0.0);
   int degraded = 0, nostress = 0;
   // right after the partner search: the particles whose gradient cannot be
   // formed (check_reference_partners); the one with the smallest ID is named
@@ -896,6 +924,10 @@ void PairTLSPH::build_bond_cache()
       vj.resize(nall);
       scratch.resize(nall);
     }
+    if (!bond_values_kept && (int) wone.size() < 2 * nall) {
+      gone.resize((size_t) 3 * nall);
+      wone.resize((size_t) 2 * nall);
+    }
     BondCache *b = scratch.data();
     double *fz = (correction_from_all_partners && bonds->nfrozen) ? bonds->frozen[i] : nullptr;
     // a correction frozen at setup: independent of which broken partners
@@ -904,9 +936,12 @@ void PairTLSPH::build_bond_cache()
     auto math = [&](auto dim_order) {
       constexpr int D = decltype(dim_order)::first_type::value;
       constexpr int O = decltype(dim_order)::second_type::value;
+      double *g = bond_values_kept ? lean.g + D * (bigint) s : gone.data();
+      double *w = bond_values_kept ? lean.w + 2 * (bigint) s : wone.data();
+      double *Qi = bond_values_kept ? Q[i] : q_build.data() + (size_t) qsz * i;
       return TLSPH::particle_bonds<D, O>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, vfrac,
-                                         kernel, kernel_scale, frozen, b, vj.data(), Q[i], sumg[i],
-                                         lean.g + D * (bigint) s, lean.w + 2 * (bigint) s);
+                                         kernel, kernel_scale, frozen, b, vj.data(), Qi, sumg[i],
+                                         g, w);
     };
     using I1 = std::integral_constant<int, 1>;
     using I2 = std::integral_constant<int, 2>;
@@ -997,6 +1032,43 @@ void PairTLSPH::build_bond_cache()
     }
   }
   cache_version++;
+}
+
+/* the values of local particle i's bonds when lean.g and lean.w do not keep
+   them (bond_values): particle_bonds with Q_i as a frozen correction, which
+   makes the records as build_bond_cache's correction did and applies the
+   same Q_i to them (apply_correction): the same values, bit for bit */
+void PairTLSPH::recompute_bond_values(int i, const double *&g, const double *&w) const
+{
+  const int s = bond_start[i], nall = bond_start[i + 1] - s;
+  if ((int) val_vj.size() < nall) {
+    val_b.resize(nall);
+    val_vj.resize(nall);
+    val_g.resize((size_t) 3 * nall);
+    val_w.resize((size_t) 2 * nall);
+  }
+  // Q_i: its column of the SIMD layout (build_ell has filled it before any call)
+  const int qsz = correction_size();
+  val_q.resize((size_t) 2 * qsz);
+  const double *qcol = ell_soa + (bigint) (3 * dim + packed_size()) * ell_nperm;
+  for (int q = 0; q < qsz; q++) val_q[qsz + q] = qcol[(bigint) q * ell_nperm + ell_inv[i]];
+  const double kernel_scale = (dim == 2) ? 1.0 / thickness : 1.0;
+  const X0Rows x0rows{x0c[0]};
+  double sg[3];
+  auto math = [&](auto dim_order) {
+    constexpr int D = decltype(dim_order)::first_type::value;
+    constexpr int O = decltype(dim_order)::second_type::value;
+    TLSPH::particle_bonds<D, O>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, atom->vfrac,
+                                kernel, kernel_scale, val_q.data() + qsz, val_b.data(), val_vj.data(),
+                                val_q.data(), sg, val_g.data(), val_w.data());
+  };
+  using I1 = std::integral_constant<int, 1>;
+  using I2 = std::integral_constant<int, 2>;
+  using I3 = std::integral_constant<int, 3>;
+  if (dim == 2) order == 1 ? math(std::pair<I2, I1>()) : math(std::pair<I2, I2>());
+  else order == 1 ? math(std::pair<I3, I1>()) : math(std::pair<I3, I2>());
+  g = val_g.data();
+  w = val_w.data();
 }
 
 // full records of the first n bonds of local particle i (g, c and the
@@ -1260,7 +1332,7 @@ void PairTLSPH::deformation_pass()
    correction fell back to a lower order. */
 bool PairTLSPH::refresh_bond_cache()
 {
-  if (atom->nmax > nmax) grow_peratom();
+  if (peratom_rows_short()) grow_peratom();
   if (!bonds->rebuild) return false;
   build_bond_cache();
   bonds->rebuild = 0;
@@ -1490,10 +1562,10 @@ void PairTLSPH::read_restart_settings(FILE *fp)
 double PairTLSPH::memory_usage()
 {
   double bytes =
-      (double) nmax * ((correction_size() + 26 + packed_size()) * sizeof(double) + sizeof(int));
+      (double) nmax * (((Q ? correction_size() : 0) + 26 + packed_size()) * sizeof(double) + sizeof(int));
   bytes += (double) nmax * (3 * sizeof(double) + sizeof(int));    // x0c, nlead
-  // lean bond arrays: partner, g (dim), two weights, slot
-  bytes += (double) ncache_max * (2 * sizeof(int) + (dim + 2) * sizeof(double));
+  // lean bond arrays: partner, slot; g (dim) and two weights where kept
+  bytes += (double) ncache_max * 2 * sizeof(int) + (double) ngw_max * (dim + 2) * sizeof(double);
   bytes += (double) nstart_max * sizeof(int);
   // the SIMD step's layout: per slot and lane a partner and dim + 3 doubles
   bytes += (double) ell_nstart * 6 * sizeof(int);

@@ -202,9 +202,10 @@ class PairTLSPH : public Pair {
   }
   void read_material_file(const std::string &file, int narg, char **names);
 
-  // per-atom arrays (nmax)
+  // per-atom arrays (nmax rows: the local and ghost particles, grow_peratom)
   int nmax;
-  double **Q;         // gradient correction (TLSPH::correction), DIM x basis size
+  double **Q;         // gradient correction (TLSPH::correction), DIM x basis size;
+                      // null without bond_values_kept (the SIMD layout's columns hold it)
   double **sumg;      // sum_j g_ij over the cached bonds
   double **F;         // deformation gradient
   double **P;         // first Piola-Kirchhoff stress, plus H_i / (2 V_i) with the
@@ -226,6 +227,10 @@ class PairTLSPH : public Pair {
   int *nlead;         // # of them that lead their pair (first in the segment):
                       // partner a ghost or a local particle after i
   void grow_peratom();
+  // the per-atom rows (nmax) cannot hold the local and ghost particles, or
+  // do not exist (nmax = 0, set by init_style; also a rank with no particle
+  // gets rows)
+  bool peratom_rows_short() const { return nmax == 0 || atom->nlocal + atom->nghost > nmax; }
 
   // bond cache in the lean layout (TLSPH::LeanBonds): structure of arrays,
   // CSR over the local atoms (bonds of i: bond_start[i] .. + the segment's
@@ -234,7 +239,7 @@ class PairTLSPH : public Pair {
   TLSPH::LeanArrays lean;
   int ncache_max, nstart_max;
   int cache_version = 0;    // +1 at every build_bond_cache() (the /kk styles copy it then)
-  double **x0c;       // reference positions consistent with the images of x (nmax)
+  double **x0c;       // reference positions consistent with the images of x
   // (virtual: the /kk styles build it on their device, pair_tlsph_kokkos.h)
   virtual void build_bond_cache();
   void resolve_bonds(bool shepard_sum, double &shepard_max, int &shepard_i);
@@ -252,11 +257,41 @@ class PairTLSPH : public Pair {
   };
   template <int DIM> TLSPH::LeanBonds<DIM, X0Rows> bonds_of(int i) const
   {
-    const int s = bond_start[i];
-    return TLSPH::LeanBonds<DIM, X0Rows>{lean.j + s,   lean.g + DIM * s, lean.w + 2 * s,
-                                         X0Rows{x0c[0]}, x0c[i], kernel,
-                                         atom->vfrac[i], order};
+    const double *g, *w;
+    bond_values(i, g, w);
+    return bond_view<DIM>(i, g, w);
   }
+  template <int DIM>
+  TLSPH::LeanBonds<DIM, X0Rows> bond_view(int i, const double *g, const double *w) const
+  {
+    return TLSPH::LeanBonds<DIM, X0Rows>{lean.j + bond_start[i], g, w, X0Rows{x0c[0]}, x0c[i],
+                                         kernel, atom->vfrac[i], order};
+  }
+  /* Where the corrected gradients and weights of the bonds live. With
+     bond_values_kept (the scalar step, tlsph/damage, the /kk styles) in
+     lean.g and lean.w. Without (pair_style tlsph's SIMD step with its stress
+     on the lanes: keeps_bond_values) only in the SIMD layout, which reads
+     them from its patterns and blocks: lean keeps partner and slot, and
+     bond_values computes a particle's values again from its Q_i, as
+     build_bond_cache did (bitwise the same), into a scratch buffer that the
+     next call overwrites (the virial's gather pass, build_ell). */
+  bool bond_values_kept = true;
+  bigint ngw_max = 0;    // bonds that lean.g and lean.w have room for
+  virtual bool keeps_bond_values() const;
+  void bond_values(int i, const double *&g, const double *&w) const
+  {
+    const bigint s = bond_start[i];
+    if (bond_values_kept) {
+      g = lean.g + dim * s;
+      w = lean.w + 2 * s;
+    } else {
+      recompute_bond_values(i, g, w);
+    }
+  }
+  void recompute_bond_values(int i, const double *&g, const double *&w) const;
+  mutable std::vector<TLSPH::Bond> val_b;
+  mutable std::vector<double> val_vj, val_g, val_w, val_q;
+  std::vector<double> q_build;    // Q_i by LAMMPS index from build_bond_cache to build_ell (not kept)
   // reference bond vector X_ij of bond m of particle i (3 components)
   void bond_vector(int i, int m, double *X) const
   {
@@ -303,7 +338,8 @@ class PairTLSPH : public Pair {
   {
     if (simd_isa != SIMD_NO) ell_dirty.push_back(i);
   }
-  void ell_put_bond(double *vb, int l, int i, int mm) const;
+  // bond mm of local particle i into lane l of slot block vb; g, w: the particle's values (bond_values)
+  void ell_put_bond(double *vb, int l, int i, int mm, const double *g, const double *w) const;
   void ell_fill_lane(int c, int l);
   void ell_apply_dirty();
   /* tlsph/damage: the SIMD step's pass (1) flags the local particles with a

@@ -134,6 +134,8 @@ class PairTLSPHDamage : public PairTLSPH {
   bool simd_screen(double &up, double &down, double &reach2) const override;
   void simd_breaks(const int *list, int n) override;
   bool alpha_after_deformation() const override { return true; }
+  // bonds break: their values are re-laid from lean.g and lean.w (ell_fill_lane)
+  bool keeps_bond_values() const override { return true; }
 };
 
 }    // namespace LAMMPS_NS

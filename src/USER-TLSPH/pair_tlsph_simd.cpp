@@ -285,7 +285,7 @@ void PairTLSPH::build_ell()
 
   // the order
   if (nall > ell_nperm) {
-    ell_nperm = nall + nall / 8 + C;
+    ell_nperm = nall + nall / 32 + C;
     memory->destroy(ell_perm);
     memory->destroy(ell_inv);
     memory->destroy(ell_chunk_of);
@@ -318,10 +318,12 @@ void PairTLSPH::build_ell()
            *vc = const_cast<double *>(cp.vcol);
     for (int k = 0; k < nlocal; k++) {
       const int i = ell_perm[k];
-      for (int q = 0; q < qsz; q++) qc[(bigint) q * ns + k] = Q[i][q];
+      const double *Qi = Q ? Q[i] : q_build.data() + (size_t) qsz * i;
+      for (int q = 0; q < qsz; q++) qc[(bigint) q * ns + k] = Qi[q];
       for (int d = 0; d < dim; d++) sc[(bigint) d * ns + k] = sumg[i][d];
       vc[k] = atom->vfrac[i];
     }
+    std::vector<double>().swap(q_build);    // Q lives in its columns now (bond_values_kept false)
   }
 
   // every local particle's bonds sorted by partner in the step's order:
@@ -393,11 +395,13 @@ void PairTLSPH::build_ell()
     for (int l = 0; l < ell.n[c]; l++) {
       const int ii = first + l, i = ell_perm[ii];
       const int b0 = bo_start[ii], nb = bo_start[ii + 1] - b0;
+      const double *gi, *wi;
+      bond_values(i, gi, wi);
       int q = 0;    // the lane's next own bond (sorted like the offsets)
       for (int m = 0; m < w; m++) {
         sj[(size_t) C * m + l] = ii + off[m];
         if (q < nb && bo[b0 + q].first - ii == off[m]) {
-          ell_put_bond(sv.data() + (size_t) nv * C * m, l, i, bo[b0 + q].second);
+          ell_put_bond(sv.data() + (size_t) nv * C * m, l, i, bo[b0 + q].second, gi, wi);
           q++;
         }
       }
@@ -481,7 +485,7 @@ void PairTLSPH::build_ell()
   std::copy(pat_off.begin(), pat_off.end(), ell.pat_off);
   std::copy(pat_v.begin(), pat_v.end(), ell.pat_v);
   if (nblock > ell_nblock_max) {
-    ell_nblock_max = nblock + nblock / 8 + 16;
+    ell_nblock_max = nblock + nblock / 32 + 16;
     memory->destroy(ell.j);
     memory->destroy(ell.v);
     memory->create(ell.j, ell_nblock_max * C, "tlsph:ell_j");
@@ -524,15 +528,33 @@ void PairTLSPH::build_ell()
 }
 
 // the values of bond mm of local particle i into lane l of the slot block vb (tlsph_ell.h)
-void PairTLSPH::ell_put_bond(double *vb, int l, int i, int mm) const
+void PairTLSPH::ell_put_bond(double *vb, int l, int i, int mm, const double *g,
+                             const double *w) const
 {
   constexpr int C = TLSPH::ELL_C;
-  const bigint e = bond_start[i] + mm;
-  for (int k = 0; k < dim; k++) vb[C * k + l] = lean.g[dim * e + k];
-  vb[C * dim + l] = lean.w[2 * e];
-  vb[C * (dim + 1) + l] = lean.w[2 * e + 1];
-  vb[C * (dim + 2) + l] =
-      (dim == 2) ? bonds_of<2>(i).reverse_weight(mm) : bonds_of<3>(i).reverse_weight(mm);
+  for (int k = 0; k < dim; k++) vb[C * k + l] = g[dim * mm + k];
+  vb[C * dim + l] = w[2 * mm];
+  vb[C * (dim + 1) + l] = w[2 * mm + 1];
+  vb[C * (dim + 2) + l] = (dim == 2) ? bond_view<2>(i, g, w).reverse_weight(mm)
+                                     : bond_view<3>(i, g, w).reverse_weight(mm);
+}
+
+/* lean.g and lean.w are dropped (bond_values_kept false) where nothing
+   but the SIMD layout needs them: pair_style tlsph (no bond changes) with
+   the SIMD step and its stress on the lanes (one isotropic law, not the
+   conservative hourglass form: simd_deformation's 'lanes'), so that no pass
+   of a step reads them; the virial's gather pass and build_ell compute them
+   again per particle (bond_values) */
+bool PairTLSPH::keeps_bond_values() const
+{
+#if TLSPH_ELL_VEC
+  if (simd_isa == SIMD_NO || any_orthotropic || (hg_form == 2 && gamma != 0.0)) return true;
+  for (int t = 2; t <= atom->ntypes; t++)
+    if (mat[t].lambda != mat[1].lambda || mat[t].mu != mat[1].mu) return true;
+  return false;
+#else
+  return true;
+#endif
 }
 
 /* Lane l of chunk c from the bond cache as it is now (tlsph/damage, after
@@ -558,6 +580,8 @@ void PairTLSPH::ell_fill_lane(int c, int l)
     for (int d = 0; d < dim; d++) sc[(bigint) d * ns + k] = sumg[i][d];
   }
   const int s = bond_start[i];
+  const double *gi, *wi;
+  bond_values(i, gi, wi);
   for (int mm = 0; mm < nbond[i]; mm++) {
     // the slots are sorted by partner offset (lane 0's partner minus first)
     const int off = ell_inv[lean.j[s + mm]] - k;
@@ -570,7 +594,7 @@ void PairTLSPH::ell_fill_lane(int c, int l)
     if (lo == w || jb[(bigint) C * lo] - first != off)
       error->one(FLERR, "pair {}: internal error: a bond of atom {} has no slot in the SIMD "
                         "step's layout", force->pair_style, atom->tag[i]);
-    ell_put_bond(vb + (bigint) nv * C * lo, l, i, mm);
+    ell_put_bond(vb + (bigint) nv * C * lo, l, i, mm, gi, wi);
   }
 }
 
@@ -753,7 +777,7 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
     if (lanes) {
       st.law = TLSPH::IsotropicSVK{mat[1].lambda, mat[1].mu, DIM == 2 ? plane_stress : 0};
       st.need_K = need_K ? 1 : 0;
-      st.Q = Q[0];
+      st.Q = Q ? Q[0] : nullptr;    // (the lanes read the columns)
       st.qs = correction_size();
       st.sumg = sumg[0];
       st.alpha = alpha;

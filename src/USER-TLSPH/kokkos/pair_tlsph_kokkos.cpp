@@ -284,7 +284,7 @@ void PairTLSPHKokkosT<DeviceType, Base>::download_rows(std::vector<int> &st, std
 
 /* ----------------------------------------------------------------------
    The bond cache after a neighbor build, built on the device: the bond
-   fix's partner rows (tags and states, 8 bytes per slot) and x0c (set on
+   fix's partner rows (tags and states, 5 bytes per slot) and x0c (set on
    the host, where a neighbor build has brought x and x0) go up, the
    partners are resolved on the device (resolve_bonds_device: LAMMPS's map
    and images synced to the device), and the bond math runs there
@@ -329,7 +329,7 @@ bool PairTLSPHKokkosT<DeviceType, Base>::device_resolve_ok() const
 }
 
 /* Base::resolve_bonds on the device: the bond fix's partner rows (tags and
-   states, 8 bytes per slot) go up, LAMMPS's map and its list of images
+   states, 5 bytes per slot) go up, LAMMPS's map and its list of images
    (sametag) are synced to the device, and per local particle a count
    kernel, a scan and a fill kernel give the partner indices and slots in
    the cache's order (the intact bonds that lead their pair, the other
@@ -344,7 +344,7 @@ template <class DeviceType, class Base>
 size_t PairTLSPHKokkosT<DeviceType, Base>::resolve_bonds_device()
 {
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
-  if (atom->nmax > this->nmax) this->grow_peratom();
+  if (this->peratom_rows_short()) this->grow_peratom();
   this->set_reference_images();
   upload(d_x0c, x0c[0], (size_t) nall * 3, "tlsph/kk:x0c");
   const int mp = MAX(1, this->bonds->maxpartner);
@@ -363,7 +363,8 @@ size_t PairTLSPHKokkosT<DeviceType, Base>::resolve_bonds_device()
   TLSPHKK::reserve(d_nbond, nlocal, "tlsph/kk:nbond");
   TLSPHKK::reserve(d_nlead, nlocal, "tlsph/kk:nlead");
 
-  const int *np = d_npartner.data(), *st = d_pstate.data();
+  const int *np = d_npartner.data();
+  const unsigned char *st = d_pstate.data();
   const tagint *pt = d_ptag.data();
   const auto map = atomKK->k_map_array.template view<DeviceType>();
   const auto same = atomKK->k_sametag.template view<DeviceType>();

@@ -104,7 +104,8 @@ template <class DeviceType, class Base> class PairTLSPHKokkosT : public Base, pu
   // the partners of the bond cache resolved on the device (public: device lambdas)
   bool device_resolve_ok() const;
   size_t resolve_bonds_device();
-  iview d_npartner, d_pstate;
+  iview d_npartner;
+  Kokkos::View<unsigned char *, DeviceType> d_pstate;    // the bond fix's states (one byte each)
   Kokkos::View<tagint *, DeviceType> d_ptag;
   template <int DIM, int ORDER> long long bond_math_chunk(int first, int last, int maxn, int nq,
                                                     bool has_frozen, double kscale);
