@@ -753,7 +753,11 @@ void PairTLSPH::grow_peratom()
   memory->grow(F, nmax, 9, "tlsph:F");
   memory->grow(P, nmax, 9, "tlsph:P");
   memory->grow(fown, nmax, 3, "tlsph:fown");
-  memory->grow(pk, nmax, packed_size(), "tlsph:packed");
+  // the packed rows: without bond_values_kept only the SIMD layout's columns
+  // hold them (the lanes write them there, the forward communication packs
+  // and unpacks them there)
+  if (bond_values_kept) memory->grow(pk, nmax, packed_size(), "tlsph:packed");
+  else memory->destroy(pk);
   memory->grow(psi, nmax, "tlsph:psi");
   memory->grow(ehg, nmax, "tlsph:ehg");
   memory->grow(nbond, nmax, "tlsph:nbond");
@@ -1159,6 +1163,13 @@ namespace {
 // rows of a contiguous per-atom array (memory->create's double** arrays
 // are one block): row j is base + stride j, one load instead of two
 TLSPH::StridedRows Rows(double **p, int n) { return TLSPH::StridedRows{p ? p[0] : nullptr, n}; }
+// the packed rows as the SIMD layout's columns, by LAMMPS index (inv: the step's order)
+struct EllColumnRows {
+  const double *base;
+  long ns;
+  const int *inv;
+  TLSPH::ColumnRows::Row operator()(int j) const { return TLSPH::ColumnRows::Row{base + inv[j], ns}; }
+};
 struct ScatterForce {
   double **f;
   void operator()(int j, const double *t) const
@@ -1247,7 +1258,7 @@ template <int DIM, int ORDER> void PairTLSPH::dispatch_deformation()
 template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, int SCATTER>
 void PairTLSPH::compute_forces()
 {
-  const auto x = Rows(atom->x, 3), v = Rows(atom->v, 3), pkr = Rows(pk, packed_size());
+  const auto x = Rows(atom->x, 3), v = Rows(atom->v, 3);
   const TLSPH::TypeArray type{atom->type};
   double **f = atom->f;
   double *vfrac = atom->vfrac;
@@ -1266,6 +1277,7 @@ void PairTLSPH::compute_forces()
     for (int d = 0; d < 3; d++) f_hg[i][d] = f_visc[i][d] = 0.0;
   // the conservative hourglass form has an energy (ehg): its work is not tallied
   PairForces pairs{0, nlocal, f, HG == 2 ? nullptr : f_hg, f_visc};
+  const auto loop = [&](const auto &pkr) {
   for (int i = 0; i < nlocal; i++) {
     double fs[3] = {fown[i][0], fown[i][1], fown[i][2]}, fv[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
     if (SCATTER) {
@@ -1284,6 +1296,16 @@ void PairTLSPH::compute_forces()
       f_visc[i][d] += fv[d];
     }
   }
+  };
+  // the rows of the partners: pk, or (bond_values_kept false: only the
+  // SIMD step's virial pass comes here, in the gather form) its columns
+  if constexpr (VIRIAL && !SCATTER) {
+    if (!pk) {
+      loop(EllColumnRows{ell_soa + (bigint) 3 * DIM * ell_nperm, ell_nperm, ell_inv});
+      return;
+    }
+  }
+  loop(Rows(pk, packed_size()));
 }
 
 template <int DIM, int ORDER>
@@ -1407,6 +1429,14 @@ int PairTLSPH::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/
 {
   const int stride = packed_size();
   int m = 0;
+  if (!pk) {    // the SIMD layout's columns (bond_values_kept false)
+    const double *pks = ell_soa + (bigint) 3 * dim * ell_nperm;
+    for (int ii = 0; ii < n; ii++) {
+      const double *c = pks + ell_inv[list[ii]];
+      for (int k = 0; k < stride; k++) buf[m++] = c[(bigint) k * ell_nperm];
+    }
+    return m;
+  }
   for (int ii = 0; ii < n; ii++) {
     const double *row = pk[list[ii]];
     for (int k = 0; k < stride; k++) buf[m++] = row[k];
@@ -1418,6 +1448,14 @@ void PairTLSPH::unpack_forward_comm(int n, int first, double *buf)
 {
   const int stride = packed_size();
   int m = 0;
+  if (!pk) {
+    double *pks = ell_soa + (bigint) 3 * dim * ell_nperm;
+    for (int i = first; i < first + n; i++) {
+      double *c = pks + ell_inv[i];
+      for (int k = 0; k < stride; k++) c[(bigint) k * ell_nperm] = buf[m++];
+    }
+    return;
+  }
   for (int i = first; i < first + n; i++)
     for (int k = 0; k < stride; k++) pk[i][k] = buf[m++];
 }
@@ -1562,7 +1600,7 @@ void PairTLSPH::read_restart_settings(FILE *fp)
 double PairTLSPH::memory_usage()
 {
   double bytes =
-      (double) nmax * (((Q ? correction_size() : 0) + 26 + packed_size()) * sizeof(double) + sizeof(int));
+      (double) nmax * (((Q ? correction_size() : 0) + 26 + (pk ? packed_size() : 0)) * sizeof(double) + sizeof(int));
   bytes += (double) nmax * (3 * sizeof(double) + sizeof(int));    // x0c, nlead
   // lean bond arrays: partner, slot; g (dim) and two weights where kept
   bytes += (double) ncache_max * 2 * sizeof(int) + (double) ngw_max * (dim + 2) * sizeof(double);

@@ -212,7 +212,8 @@ class PairTLSPH : public Pair {
                       // conservative hourglass form (what the force pass uses)
   double **fown;      // V_i P_i sum_j g_ij
   double **pk;        // packed rows F, K = J F^-T, alpha_i [, R = V P Q] (TLSPH::Packed),
-                      // communicated
+                      // communicated; null without bond_values_kept (the SIMD
+                      // layout's columns hold them)
   int gather_rows;    // 1: rows carry R (newton_pair off: the gather form of the
                       // stress term reads it); 0: compact rows (set in init_style)
   int packed_size() const

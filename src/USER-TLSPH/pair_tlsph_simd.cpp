@@ -786,7 +786,7 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
       st.psi = psi;
       st.ehg = ehg;
       st.fown = fown[0];
-      st.pk = pk[0];
+      st.pk = pk ? pk[0] : nullptr;    // null: the columns alone (bond_values_kept false)
       st.np = np;
       st.pks = pks;
       st.bad = -1;
@@ -922,7 +922,8 @@ void PairTLSPH::simd_forces(int hg, int visc)
   if (hg == 2)
     for (int i = 0; i < nlocal; i++) f_hg[i][0] = f_hg[i][1] = f_hg[i][2] = 0.0;
   // the ghosts' packed rows, as the forward communication left them
-  ell_columns_pk(nlocal, nlocal + atom->nghost);
+  // (without per-atom rows the communication wrote the columns itself)
+  if (pk) ell_columns_pk(nlocal, nlocal + atom->nghost);
   if (nlocal == 0) return;
   // one material (every type's force-pass numbers equal): no per-pair lookup
   int multi = 0;

@@ -101,7 +101,7 @@ struct EllStress {
   int qs;
   const double *sumg;       // 3 per atom
   double alpha;             // alpha_i (no per-particle alpha here)
-  double *F, *P, *psi, *ehg, *fown, *pk;    // 9, 9, 1, 1, 3, np per atom
+  double *F, *P, *psi, *ehg, *fown, *pk;    // 9, 9, 1, 1, 3, np per atom (pk may be null)
   int np;
   double *pks;              // the packed rows' columns (EllParticles::pks)
   int bad;                  // first lane that failed (LAMMPS index), else -1
@@ -162,7 +162,8 @@ TLSPH_FORCE_INLINE void ell_stress_lanes(const V *Fa, long i0, const EllParticle
     st.psi[i] = psi[l];
     st.ehg[i] = 0.0;
     for (int r = 0; r < 3; r++) st.fown[3 * i + r] = r < DIM ? fo[r][l] : 0.0;
-    for (int q = 0; q < L::size; q++) st.pk[(long) st.np * i + q] = row[q][l];
+    if (st.pk)
+      for (int q = 0; q < L::size; q++) st.pk[(long) st.np * i + q] = row[q][l];
     if ((!(J[l] > 0.0) || !std::isfinite(psi[l])) && st.bad < 0) st.bad = (int) i, st.badJ = J[l];
   }
 }
