@@ -71,22 +71,12 @@ PairTLSPH::~PairTLSPH()
     memory->destroy(setflag);
     memory->destroy(cutsq);
   }
-  memory->destroy(Q);
-  memory->destroy(sumg);
-  memory->destroy(F);
-  memory->destroy(P);
-  memory->destroy(fown);
-  memory->destroy(pk);
-  memory->destroy(psi);
-  memory->destroy(ehg);
-  memory->destroy(nbond);
-  memory->destroy(nlead);
+  destroy_peratom();
   memory->destroy(bond_start);
   memory->destroy(lean.j);
   memory->destroy(lean.g);
   memory->destroy(lean.w);
   memory->destroy(lean.k);
-  memory->destroy(x0c);
   memory->destroy(ell.start);
   memory->destroy(ell.j);
   memory->destroy(ell.v);
@@ -721,6 +711,21 @@ double PairTLSPH::max_wave_speed() const
 
 /* ---------------------------------------------------------------------- */
 
+void PairTLSPH::destroy_peratom()
+{
+  memory->destroy(Q);
+  memory->destroy(sumg);
+  memory->destroy(F);
+  memory->destroy(P);
+  memory->destroy(fown);
+  memory->destroy(pk);
+  memory->destroy(psi);
+  memory->destroy(ehg);
+  memory->destroy(nbond);
+  memory->destroy(nlead);
+  memory->destroy(x0c);
+}
+
 void PairTLSPH::grow_peratom()
 {
   /* rows for the local and ghost particles (+1/32): not atom->nmax, which
@@ -732,19 +737,7 @@ void PairTLSPH::grow_peratom()
   const int nall = atom->nlocal + atom->nghost;
   const int fresh = (nmax == 0);
   nmax = nall + nall / 32 + 16;
-  if (fresh) {
-    memory->destroy(Q);
-    memory->destroy(sumg);
-    memory->destroy(F);
-    memory->destroy(P);
-    memory->destroy(fown);
-    memory->destroy(pk);
-    memory->destroy(psi);
-    memory->destroy(ehg);
-    memory->destroy(nbond);
-    memory->destroy(nlead);
-    memory->destroy(x0c);
-  }
+  if (fresh) destroy_peratom();
   // Q: DIM x basis size, <= QMAX; without bond_values_kept the SIMD
   // layout's columns hold it (q_build until build_ell)
   if (bond_values_kept) memory->grow(Q, nmax, correction_size(), "tlsph:Q");

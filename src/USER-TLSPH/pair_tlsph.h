@@ -228,6 +228,7 @@ class PairTLSPH : public Pair {
   int *nlead;         // # of them that lead their pair (first in the segment):
                       // partner a ghost or a local particle after i
   void grow_peratom();
+  void destroy_peratom();    // the arrays grow_peratom makes
   // the per-atom rows (nmax) cannot hold the local and ghost particles, or
   // do not exist (nmax = 0, set by init_style; also a rank with no particle
   // gets rows)
@@ -279,6 +280,7 @@ class PairTLSPH : public Pair {
   bool bond_values_kept = true;
   bigint ngw_max = 0;    // bonds that lean.g and lean.w have room for
   virtual bool keeps_bond_values() const;
+  bool stress_lanes_possible() const;
   void bond_values(int i, const double *&g, const double *&w) const
   {
     const bigint s = bond_start[i];

@@ -548,13 +548,20 @@ void PairTLSPH::ell_put_bond(double *vb, int l, int i, int mm, const double *g,
 bool PairTLSPH::keeps_bond_values() const
 {
 #if TLSPH_ELL_VEC
-  if (simd_isa == SIMD_NO || any_orthotropic || (hg_form == 2 && gamma != 0.0)) return true;
-  for (int t = 2; t <= atom->ntypes; t++)
-    if (mat[t].lambda != mat[1].lambda || mat[t].mu != mat[1].mu) return true;
-  return false;
+  return simd_isa == SIMD_NO || !stress_lanes_possible();
 #else
   return true;
 #endif
+}
+
+// one isotropic law for every type and not the conservative hourglass form:
+// pass (1) of the SIMD step can compute the stress on the lanes
+bool PairTLSPH::stress_lanes_possible() const
+{
+  if (any_orthotropic || (hg_form == 2 && gamma != 0.0)) return false;
+  for (int t = 2; t <= atom->ntypes; t++)
+    if (mat[t].lambda != mat[1].lambda || mat[t].mu != mat[1].mu) return false;
+  return true;
 }
 
 /* Lane l of chunk c from the bond cache as it is now (tlsph/damage, after
@@ -760,7 +767,7 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
   const bool need_K = viscosity_active();
   const int ns = ell_nperm, np = packed_size();
   double *pks = ell_soa + (bigint) 3 * DIM * ns;
-  bool lanes = !LAWS && !(hg_form == 2 && gamma != 0.0) && (!alpha_atom || alpha_after_deformation());
+  bool lanes = !LAWS && stress_lanes_possible() && (!alpha_atom || alpha_after_deformation());
   // tlsph/damage: the stretch screen (simd_screen), the flagged particles to simd_breaks
   TLSPH::EllScreen scr{0.0, -1.0, 0.0, nullptr, 0};
   const int screen = simd_screen(scr.up, scr.down, scr.reach2) ? (scr.down > 0.0 ? 2 : 1) : 0;
@@ -769,8 +776,6 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
     scr.list = ell_flagged.data();
     simd_screen_select(scr);
   }
-  for (int t = 2; lanes && t <= atom->ntypes; t++)
-    lanes = mat[t].lambda == mat[1].lambda && mat[t].mu == mat[1].mu;
 #if TLSPH_ELL_VEC
   if (nlocal > 0) {
     TLSPH::EllStress st;
