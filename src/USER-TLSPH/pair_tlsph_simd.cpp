@@ -721,10 +721,11 @@ void PairTLSPH::ell_columns_pk(int k0, int k1)
   }
 }
 
-// columns of ell_soa: x, v, x0c (dim each), the packed rows, Q, s (dim), V, fown (dim)
+// columns of ell_soa: x, v, x0c (dim each), the packed rows, Q, s (dim), V, fown (dim),
+// the pair-force accumulators of pass (3) (2 dim)
 int PairTLSPH::ell_ncolumns() const
 {
-  return 3 * dim + packed_size() + correction_size() + dim + 1 + dim;
+  return 3 * dim + packed_size() + correction_size() + dim + 1 + dim + 2 * dim;
 }
 
 TLSPH::EllParticles PairTLSPH::ell_particles()
@@ -741,6 +742,7 @@ TLSPH::EllParticles PairTLSPH::ell_particles()
   p.scol = p.qcol + (bigint) correction_size() * ns;
   p.vcol = p.scol + (bigint) dim * ns;
   p.fcol = const_cast<double *>(p.vcol) + ns;
+  p.pcol = p.fcol + (bigint) dim * ns;
   p.perm = ell_perm;
   p.type = atom->type;
   p.pm = pairmat.data();
@@ -935,6 +937,13 @@ void PairTLSPH::simd_forces(int hg, int visc)
   for (int t = 2; t <= atom->ntypes; t++)
     if (std::memcmp(&pairmat[t], &pairmat[1], sizeof(TLSPH::PairMaterial)) != 0) multi = 1;
 #if TLSPH_ELL_VEC
+  {
+    // the pair-force accumulators, locals and ghosts (both ends of a bond
+    // to a ghost may receive)
+    const EllParticles cp = ell_particles();
+    const int nall = nlocal + atom->nghost;
+    for (int q = 0; q < 2 * dim; q++) std::fill_n(cp.pcol + (bigint) q * ell_nperm, std::min(nall + TLSPH::ELL_C, ell_nperm), 0.0);
+  }
   ForceFn fn;
   if (dim == 2) fn = (order == 1) ? pick_forces_hg<2, 1>(simd_isa, hg, visc, multi)
                                   : pick_forces_hg<2, 2>(simd_isa, hg, visc, multi);

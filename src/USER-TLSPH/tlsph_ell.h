@@ -25,15 +25,18 @@
    interior: translated copies of one neighbourhood) keeps no blocks: it
    reads a pattern shared by all such chunks.
 
-   Force pass: the gather form (each particle sums its whole force from its
-   own bonds, reading the partners' packed rows with R = V P Q; no scatter,
-   no reverse communication; the form of newton_pair off and of the Kokkos
-   kernels), in the same operations and order as particle_force_bonds
-   (tlsph_particle.h) with SCATTER off, whose pair-term templates it calls
-   with a vector type (tlsph_ell_vec.h): one copy of the math.
-   pair_tlsph_simd.cpp compiles the kernels for AVX-512, AVX2 + FMA and the
-   portable baseline and picks one at run time. With FMA and the bonds
-   summed by partner the results differ from the scalar path by round-off.
+   Force pass: the stress term in the gather form (each particle sums it
+   from its own bonds, reading the partners' packed rows with R = V P Q),
+   the viscous and hourglass pair forces once per bond, by the particle
+   that comes first in the step's order, which subtracts them from its
+   partner's accumulator (a contiguous vector per slot; a ghost partner's
+   end is computed by its owner, so there is no reverse communication);
+   the pair terms are the templates of particle_force_bonds
+   (tlsph_particle.h) called with a vector type (tlsph_ell_vec.h): one
+   copy of the math. pair_tlsph_simd.cpp compiles the kernels for
+   AVX-512, AVX2 + FMA and the portable baseline and picks one at run
+   time. With FMA and the bonds summed by partner the results differ from
+   the scalar path by round-off.
 ------------------------------------------------------------------------- */
 
 #ifndef TLSPH_ELL_H
@@ -93,6 +96,8 @@ struct EllParticles {
   const double *scol;    // s_i = sum_j g_ij (DIM columns)
   const double *vcol;    // V_i
   double *fcol;          // V_i P_i s_i (DIM columns), written by pass (1)
+  double *pcol;          // pass (3): the viscous, then the hourglass pair forces
+                         // that earlier partners left (DIM columns each)
   const int *perm;       // SIMD order -> LAMMPS index
   const int *type;       // by LAMMPS index, as the rest below
   const PairMaterial *pm;

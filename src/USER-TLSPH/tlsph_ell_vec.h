@@ -226,11 +226,21 @@ TLSPH_FORCE_INLINE void ell_deformation_stencil(const Slots &sl, int first, int 
   }
 }
 
-/* pass (3), gather form, for lanes h .. h + W - 1 of a chunk: the stress
-   term - sum_j c_ij R_j p(-X_ij/h), the viscous and (HG 1, 2) hourglass
-   pair forces from this end (the terms and order of particle_force_bonds,
-   SCATTER off), plus fown; adds to f and sets the tallies f_hg (HG 1) and
-   f_visc. MULTI 0: one material (its averages are the values themselves). */
+/* pass (3) for lanes h .. h + W - 1 of a chunk. The stress term is
+   gathered: - sum_j c_ij R_j p(-X_ij/h) over every bond, plus fown. The
+   viscous and (HG 1, 2) hourglass pair forces are antisymmetric
+   (f_ji = -f_ij), so each bond's is computed once, by the particle that
+   comes first in the step's order (the partner offset of the slot is
+   positive; locals come before ghosts, so a bond to an earlier particle is
+   a bond to a local particle, whose chunk computed it): the lanes add it,
+   and the partners' accumulators (EllParticles::pcol, zeroed before the
+   pass) subtract it, a contiguous vector per slot. A partner's accumulator
+   is complete when its own lanes come: the chunks run in the step's order
+   and only later particles receive. A ghost partner's entry is not read:
+   its owner computes its end of the bond. The sums of a particle's pair
+   forces are then taken in another order than from both ends (round-off).
+   Adds to f and sets the tallies f_hg (HG 1) and f_visc. MULTI 0: one
+   material (its averages are the values themselves). */
 template <int DIM, int ORDER, int HG, int VISC, int MULTI, int W, class Slots>
 TLSPH_FORCE_INLINE void ell_force_stencil(const Slots &sl, int first, int h,
                                           const EllParticles &p)
@@ -244,95 +254,110 @@ TLSPH_FORCE_INLINE void ell_force_stencil(const Slots &sl, int first, int h,
   const double eps2 = 0.01 * p.h * p.h;
   const long ns = p.ns, i0 = (long) first + h;
   const double *xs = p.xs, *vs = p.vs, *x0s = p.x0s, *pks = p.pks;
+  double *pv_col = p.pcol, *ph_col = p.pcol + DIM * ns;
 
-  V xi[DIM], vi[DIM], x0i[DIM], Fi[DIM * DIM], Ki[DIM * DIM];
-  for (int d = 0; d < DIM; d++) {
-    xi[d] = ell_load<V>(xs + d * ns + i0);
-    vi[d] = ell_load<V>(vs + d * ns + i0);
-    x0i[d] = ell_load<V>(x0s + d * ns + i0);
-  }
-  for (int k = 0; k < DIM * DIM; k++) {
-    Fi[k] = ell_load<V>(pks + (L::F + k) * ns + i0);
-    Ki[k] = ell_load<V>(pks + (L::K + k) * ns + i0);
-  }
-  const V ai = ell_load<V>(pks + L::A * ns + i0);
-  double tc[C], tr[C], tE[C];
-  for (int l = 0; l < C; l++) {
-    const int il = p.perm[i0 + l];
-    const PairMaterial &mi = p.pm[p.type[MULTI ? il : p.perm[first]]];
-    tc[l] = mi.c0, tr[l] = mi.rho, tE[l] = mi.E;
-  }
-  const V Vi = ell_load<V>(p.vcol + i0), c0i = ell_load<V>(tc), rhoi = ell_load<V>(tr), Ei = ell_load<V>(tE);
-  V as[DIM], av[DIM], avi[DIM], ah[DIM];
-  for (int d = 0; d < DIM; d++) as[d] = av[d] = avi[d] = ah[d] = V{};
-
+  V x0i[DIM], as[DIM];
+  for (int d = 0; d < DIM; d++) x0i[d] = ell_load<V>(x0s + d * ns + i0), as[d] = V{};
+  // the stress term, every bond
   for (int m = 0; m < sl.n; m++) {
     const long j0 = sl.j0(m) + h;
-    V X[DIM];
-    for (int d = 0; d < DIM; d++) X[d] = ell_load<V>(x0s + d * ns + j0) - x0i[d];
-    {
-      V s3[3] = {V{}, V{}, V{}}, pb[NB];
-      for (int d = 0; d < DIM; d++) s3[d] = -X[d] * inv_h;
-      Basis<DIM, ORDER>::eval(s3, pb);
-      const V cm = sl.template val<V>(m, S::CREV, h);
-      for (int r = 0; r < DIM; r++) {
-        V acc = V{};
-        for (int k = 0; k < NB; k++) acc += ell_load<V>(pks + (L::R + NB * r + k) * ns + j0) * pb[k];
-        as[r] -= cm * acc;
-      }
-    }
-    if (!(HG || VISC)) continue;
-    V xij[DIM], r2 = V{};
-    for (int d = 0; d < DIM; d++) {
-      xij[d] = ell_load<V>(xs + d * ns + j0) - xi[d];
-      r2 += xij[d] * xij[d];
-    }
-    const V r2s = r2 > V{} ? r2 : ell_splat<V>(1.0);
-    const V inv_both = 1.0 / (r2s * (r2s + eps2));
-    V c0j = c0i, rhoj = rhoi, Ej = Ei;
-    if (MULTI) {
-      for (int l = 0; l < C; l++) {
-        const PairMaterial &mj = p.pm[p.type[p.perm[j0 + l]]];
-        tc[l] = mj.c0, tr[l] = mj.rho, tE[l] = mj.E;
-      }
-      c0j = ell_load<V>(tc), rhoj = ell_load<V>(tr), Ej = ell_load<V>(tE);
-    }
-    if (VISC) {
-      V vj[DIM];
-      for (int d = 0; d < DIM; d++) vj[d] = ell_load<V>(vs + d * ns + j0);
-      const V sv = viscous_coefficient<DIM>(
-          vi, vj, xij, r2, inv_both, p.h, p.beta, 0.5 * (ai + ell_load<V>(pks + L::A * ns + j0)),
-          V(0.5 * (c0i + c0j)), V(0.5 * (rhoi + rhoj)), V(Vi * sl.template val<V>(m, S::WV, h)));
-      for (int d = 0; d < DIM; d++) avi[d] += sv * X[d];
-      for (int r = 0; r < DIM; r++) {
-        V acc = V{};
-        for (int k = 0; k < DIM; k++) acc += ell_load<V>(pks + (L::K + DIM * r + k) * ns + j0) * X[k];
-        av[r] += sv * acc;
-      }
-    }
-    if (HG) {
-      V Fj[DIM * DIM], ph[DIM];
-      for (int k = 0; k < DIM * DIM; k++) Fj[k] = ell_load<V>(pks + (L::F + k) * ns + j0);
-      hourglass_pair<DIM, HG, false>(Fi, Fj, X, xij, r2, eps2, inv_both,
-                                     V(p.gamma * 0.5 * (Ei + Ej)),
-                                     V(Vi * sl.template val<V>(m, S::WHG, h)), ph);
-      for (int d = 0; d < DIM; d++) ah[d] += ph[d];
+    V s3[3] = {V{}, V{}, V{}}, pb[NB];
+    for (int d = 0; d < DIM; d++) s3[d] = (x0i[d] - ell_load<V>(x0s + d * ns + j0)) * inv_h;
+    Basis<DIM, ORDER>::eval(s3, pb);
+    const V cm = sl.template val<V>(m, S::CREV, h);
+    for (int r = 0; r < DIM; r++) {
+      V acc = V{};
+      for (int k = 0; k < NB; k++) acc += ell_load<V>(pks + (L::R + NB * r + k) * ns + j0) * pb[k];
+      as[r] -= cm * acc;
     }
   }
 
-  V fv[DIM];
-  for (int r = 0; r < DIM; r++) {
-    fv[r] = av[r];
-    if (VISC)
-      for (int k = 0; k < DIM; k++) fv[r] += Ki[DIM * r + k] * avi[k];
+  // the pair forces, once per bond (the slots of later partners)
+  V av[DIM], ah[DIM];
+  for (int d = 0; d < DIM; d++) av[d] = ah[d] = V{};
+  if (HG || VISC) {
+    V xi[DIM], vi[DIM], Fi[DIM * DIM], Ki[DIM * DIM];
+    for (int d = 0; d < DIM; d++) {
+      xi[d] = ell_load<V>(xs + d * ns + i0);
+      vi[d] = ell_load<V>(vs + d * ns + i0);
+    }
+    for (int k = 0; k < DIM * DIM; k++) {
+      Fi[k] = ell_load<V>(pks + (L::F + k) * ns + i0);
+      Ki[k] = ell_load<V>(pks + (L::K + k) * ns + i0);
+    }
+    const V ai = ell_load<V>(pks + L::A * ns + i0);
+    double tc[C], tr[C], tE[C];
+    for (int l = 0; l < C; l++) {
+      const int il = p.perm[i0 + l];
+      const PairMaterial &mi = p.pm[p.type[MULTI ? il : p.perm[first]]];
+      tc[l] = mi.c0, tr[l] = mi.rho, tE[l] = mi.E;
+    }
+    const V Vi = ell_load<V>(p.vcol + i0), c0i = ell_load<V>(tc), rhoi = ell_load<V>(tr),
+            Ei = ell_load<V>(tE);
+    for (int m = 0; m < sl.n; m++) {
+      if (sl.j0(m) < first) continue;    // an earlier partner computed this bond
+      const long j0 = sl.j0(m) + h;
+      V X[DIM], xij[DIM], r2 = V{};
+      for (int d = 0; d < DIM; d++) {
+        X[d] = ell_load<V>(x0s + d * ns + j0) - x0i[d];
+        xij[d] = ell_load<V>(xs + d * ns + j0) - xi[d];
+        r2 += xij[d] * xij[d];
+      }
+      const V r2s = r2 > V{} ? r2 : ell_splat<V>(1.0);
+      const V inv_both = 1.0 / (r2s * (r2s + eps2));
+      V c0j = c0i, rhoj = rhoi, Ej = Ei;
+      if (MULTI) {
+        for (int l = 0; l < C; l++) {
+          const PairMaterial &mj = p.pm[p.type[p.perm[j0 + l]]];
+          tc[l] = mj.c0, tr[l] = mj.rho, tE[l] = mj.E;
+        }
+        c0j = ell_load<V>(tc), rhoj = ell_load<V>(tr), Ej = ell_load<V>(tE);
+      }
+      if (VISC) {
+        V vj[DIM];
+        for (int d = 0; d < DIM; d++) vj[d] = ell_load<V>(vs + d * ns + j0);
+        const V sv = viscous_coefficient<DIM>(
+            vi, vj, xij, r2, inv_both, p.h, p.beta, 0.5 * (ai + ell_load<V>(pks + L::A * ns + j0)),
+            V(0.5 * (c0i + c0j)), V(0.5 * (rhoi + rhoj)), V(Vi * sl.template val<V>(m, S::WV, h)));
+        for (int r = 0; r < DIM; r++) {
+          V acc = V{};
+          for (int k = 0; k < DIM; k++)
+            acc += (Ki[DIM * r + k] + ell_load<V>(pks + (L::K + DIM * r + k) * ns + j0)) * X[k];
+          const V pv = sv * acc;
+          av[r] += pv;
+          double *q = pv_col + r * ns + j0;
+          const V qj = ell_load<V>(q) - pv;
+          __builtin_memcpy(q, &qj, sizeof(V));
+        }
+      }
+      if (HG) {
+        V Fj[DIM * DIM], ph[DIM];
+        for (int k = 0; k < DIM * DIM; k++) Fj[k] = ell_load<V>(pks + (L::F + k) * ns + j0);
+        hourglass_pair<DIM, HG, false>(Fi, Fj, X, xij, r2, eps2, inv_both,
+                                       V(p.gamma * 0.5 * (Ei + Ej)),
+                                       V(Vi * sl.template val<V>(m, S::WHG, h)), ph);
+        for (int d = 0; d < DIM; d++) {
+          ah[d] += ph[d];
+          double *q = ph_col + d * ns + j0;
+          const V qj = ell_load<V>(q) - ph[d];
+          __builtin_memcpy(q, &qj, sizeof(V));
+        }
+      }
+    }
+  }
+
+  // what the earlier partners left in the accumulators
+  for (int d = 0; d < DIM; d++) {
+    if (VISC) av[d] += ell_load<V>(pv_col + d * ns + i0);
+    if (HG) ah[d] += ell_load<V>(ph_col + d * ns + i0);
   }
   for (int l = 0; l < C; l++) {
     const long i = p.perm[i0 + l];
     for (int r = 0; r < DIM; r++) {
       const double fs = p.fcol[r * ns + i0 + l] + as[r][l];
-      p.f[3 * i + r] += fs + fv[r][l] + ah[r][l];
+      p.f[3 * i + r] += fs + av[r][l] + ah[r][l];
       if (HG != 2 && p.f_hg) p.f_hg[3 * i + r] = ah[r][l];
-      p.f_visc[3 * i + r] = fv[r][l];
+      p.f_visc[3 * i + r] = av[r][l];
     }
     for (int r = DIM; r < 3; r++) {
       if (HG != 2 && p.f_hg) p.f_hg[3 * i + r] = 0.0;
