@@ -21,7 +21,7 @@ export TLSPH_PYTHON = $(PYTHON)
 export LMP_TLSPH = $(BUILD_ABS)/lmp_tlsph
 export TLSPH_PLUGIN = $(BUILD_ABS)/tlsphplugin.so
 
-.PHONY: all setup configure build run test test-sanitize fuzz bench bench-instructions bench-compare bench-phases \
+.PHONY: all setup configure build run test test-sanitize fuzz bench bench-instructions bench-compare bench-scaling bench-phases \
         bench-pareto bench-roofline bench-kokkos kokkos kokkos-cuda kokkos-stock kk-plugin clean \
         gpu-bundle gpu-bundle-host gpu-check-host
 
@@ -126,6 +126,11 @@ bench-instructions: build
 # LAMMPS once, cached in $(TLSPH_CACHE)); doc/bench.md, "Side by side"
 bench-compare: build
 	bash bench/compare.sh
+
+# two MPI ranks against one on the 2D block, alternating pairs
+# (bench/scaling.md; doc/bench.md, "Two ranks")
+bench-scaling: build
+	bash bench/scaling.sh
 
 # speed per phase of the step: simd no against the SIMD step per
 # instruction set (bench/phases.md; doc/bench.md, "Speed per phase")

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Two MPI ranks against one (issue 24's goal: >= 1.85x on the 2D block):
+# `pair_style tlsph` (our plugin, the bench LAMMPS of compare.sh) on the 2D
+# block of bench/in.compare, the timed run on 1 rank and on 2 ranks
+# alternating, SCALING_PAIRS (7) pairs; each pair's ratio (1-rank loop time
+# over 2-rank loop time) and their median. Writes bench/scaling.md.
+#   bash bench/scaling.sh           (make bench-scaling)
+#   SCALING_QUICK=1 bash bench/scaling.sh   smoke: a small block, 2 pairs
+set -euo pipefail
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ROOT="$(dirname "$HERE")"
+PLUGIN="${TLSPH_PLUGIN:-$ROOT/build/tlsphplugin.so}"
+[ -f "$PLUGIN" ] || { echo "scaling: $PLUGIN not found: run 'make build' first" >&2; exit 1; }
+LMP=$(bash "$ROOT/scripts/build-lammps-plugin.sh" bench | tail -n1)
+PAIRS=${SCALING_PAIRS:-7}
+if [ "${SCALING_QUICK:-0}" != 0 ]; then n=60 ns=20 PAIRS=2; else n=190 ns=400; fi
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
+OUT="$HERE/out/scaling"; mkdir -p "$OUT"
+: > "$OUT/times.txt"
+run() {    # ranks pair
+  local log="$OUT/np$1-$2.log"
+  (cd "$OUT" && mpirun -np "$1" --oversubscribe "$LMP" -in "$HERE/in.compare" -var code tlsph \
+     -var dim 2 -var n "$n" -var nsteps "$ns" -var plugin "$PLUGIN" -log none -echo none \
+     > "$log" 2>&1) || { tail -5 "$log" >&2; echo "scaling: $1 rank(s) failed (log $log)" >&2; exit 1; }
+  local t comm
+  t=$(grep "Loop time" "$log" | tail -1 | awk '{print $4}')
+  comm=$(grep "^Comm " "$log" | tail -1 | awk '{print $NF}')
+  echo "$2 $1 $t $comm" >> "$OUT/times.txt"
+}
+for p in $(seq "$PAIRS"); do
+  run 1 "$p"
+  run 2 "$p"
+done
+/usr/bin/python3 - "$OUT/times.txt" "$HERE/scaling.md" "$(git -C "$ROOT" describe --always --dirty 2>/dev/null || echo '?')" \
+  "$n" "$ns" <<'EOF'
+import datetime, statistics, sys
+rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
+t = {}
+comm = {}
+for p, np_, s, c in rows:
+    t[(int(p), int(np_))] = float(s)
+    comm[(int(p), int(np_))] = float(c)
+pairs = sorted({p for p, _ in t})
+ratios = [t[(p, 1)] / t[(p, 2)] for p in pairs]
+cpu = "?"
+for l in open("/proc/cpuinfo"):
+    if l.startswith("model name"):
+        cpu = l.split(":", 1)[1].strip()
+        break
+n, ns = int(sys.argv[4]), int(sys.argv[5])
+out = ["# Two MPI ranks against one (bench/scaling.sh)", "",
+       f"- date: {datetime.datetime.now():%Y-%m-%d %H:%M}, commit `{sys.argv[3]}`, CPU: {cpu}",
+       f"- `pair_style tlsph` (SIMD step), the 2D block of bench/in.compare ({n} x {n} = {n * n} particles), "
+       f"timed run of {ns} steps, 1 rank and 2 ranks alternating (mpirun --oversubscribe), {len(pairs)} pairs; "
+       "ratio = 1-rank loop time / 2-rank loop time; Comm = LAMMPS's 'Comm' share of the loop (%)", "",
+       "| pair | 1 rank [s] | 2 ranks [s] | ratio | Comm 1 rank [%] | Comm 2 ranks [%] |",
+       "|---:|---:|---:|---:|---:|---:|"]
+for p, r in zip(pairs, ratios):
+    out.append(f"| {p} | {t[(p, 1)]:.3f} | {t[(p, 2)]:.3f} | {r:.2f} | {comm[(p, 1)]:.2f} | {comm[(p, 2)]:.2f} |")
+out += ["", f"Median ratio: **{statistics.median(ratios):.2f}x** (range {min(ratios):.2f}-{max(ratios):.2f}x; "
+        "issue 24 asks >= 1.85x)", ""]
+open(sys.argv[2], "w").write("\n".join(out))
+print("\n".join(out))
+EOF
