@@ -128,7 +128,7 @@ bench-compare: build
 	bash bench/compare.sh
 
 # two MPI ranks against one on the 2D block, alternating pairs
-# (bench/scaling.md; doc/bench.md, "Two ranks")
+# (bench/scaling.md; doc/bench.md, the table of the goals of issue 24)
 bench-scaling: build
 	bash bench/scaling.sh
 
