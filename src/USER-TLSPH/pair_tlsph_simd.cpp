@@ -938,11 +938,12 @@ void PairTLSPH::simd_forces(int hg, int visc)
     if (std::memcmp(&pairmat[t], &pairmat[1], sizeof(TLSPH::PairMaterial)) != 0) multi = 1;
 #if TLSPH_ELL_VEC
   {
-    // the pair-force accumulators, locals and ghosts (both ends of a bond
-    // to a ghost may receive)
-    const EllParticles cp = ell_particles();
-    const int nall = nlocal + atom->nghost;
-    for (int q = 0; q < 2 * dim; q++) std::fill_n(cp.pcol + (bigint) q * ell_nperm, std::min(nall + TLSPH::ELL_C, ell_nperm), 0.0);
+    // the accumulators the kernel reads (viscous: the first dim columns,
+    // hourglass: the next dim), locals and ghosts (a ghost partner receives too)
+    double *pcol = ell_particles().pcol;
+    const bigint n = std::min(nlocal + atom->nghost + TLSPH::ELL_C, ell_nperm);
+    for (int q = 0; q < 2 * dim; q++)
+      if (q < dim ? visc : hg) std::fill_n(pcol + (bigint) q * ell_nperm, n, 0.0);
   }
   ForceFn fn;
   if (dim == 2) fn = (order == 1) ? pick_forces_hg<2, 1>(simd_isa, hg, visc, multi)
