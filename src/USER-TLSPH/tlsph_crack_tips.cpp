@@ -364,7 +364,9 @@ void TLSPHCrackTips::find_tips()
 
 
 /* kfit j: the domain J-integral (tlsph_crack.h, j_integrand) of each tip in
-   'live', over the particles whose reference position lies within jr2 h of
+   'live', along the unit direction dir (2 per tip: the direction of the
+   faces its K_I / K_II are measured on, below), over the particles whose
+   reference position lies within jr2 h of
    the tip (a cylinder through the thickness in 3D), per unit depth, all
    ranks. Each particle's F comes from its intact bonds and the positions
    now (the F of the last deformation pass is a step old and, at a neighbor
@@ -375,7 +377,8 @@ void TLSPHCrackTips::find_tips()
    against J's r2^0), which shrinks with h; it would need each particle's
    acceleration, a history that neither migrates with the atoms nor is in a
    restart file, so the same run on other ranks or restarted would differ. */
-void TLSPHCrackTips::j_integrals(const std::vector<int> &live, std::vector<double> &J)
+void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector<double> &dir,
+                                 std::vector<double> &J)
 {
   const int nt = live.size();
   J.assign(nt, 0.0);
@@ -408,7 +411,7 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, std::vector<doubl
   for (int a = 0; a < nt; a++) {
     const CrackTip &tp = list[live[a]];
     const auto &T = tp.path.back();
-    const double e[3] = {tp.t[0], tp.t[1], 0.0};
+    const double e[3] = {dir[2 * a], dir[2 * a + 1], 0.0};
     double vm[3] = {0.0, 0.0, 0.0};
     if (pmall[4 * a + 3] > 0.0)
       for (int d = 0; d < 3; d++) vm[d] = pmall[4 * a + d] / pmall[4 * a + 3];
@@ -517,14 +520,37 @@ void TLSPHCrackTips::grow()
     }
   }
   MPI_Allreduce(mine.data(), sums.data(), nt * NK * 6, MPI_DOUBLE, MPI_SUM, world);
+  // the faces' mean direction at each tip's samples (those with particles
+  // on both sides): the frame of its K_I, K_II and of the kink angle
+  std::vector<double> frs(2 * nt, 0.0);
+  for (int a = 0; a < nt; a++)
+    for (int k = 0; k < NK; k++) {
+      const int q = a * NK + k;
+      const double *S = sums.data() + 6 * q;
+      if (!ok[q] || !(S[0] > 0.0) || !(S[3] > 0.0)) continue;
+      frs[2 * a] += T[2 * q];
+      frs[2 * a + 1] += T[2 * q + 1];
+    }
   // kfit j: the energy release rate of each live tip (the domain J-integral)
+  // along those faces, not along the tip's last segment: just after a kink
+  // the segment is shorter than the J domain's inner radius, the faces that
+  // cross the domain are the parent crack's, and J along them is the parent
+  // crack's energy release rate, from which the kink rule (Erdogan and Sih)
+  // takes the kinked tip's (J along the new segment would add the unknown
+  // term W (m . e) on the parent's faces, which are not parallel to it)
   std::vector<double> Jt(nt, 0.0);
   if (kfit == 2) {
     std::vector<int> live;
-    for (int a = 0; a < nt; a++)
-      if (list[a].alive) live.push_back(a);
+    std::vector<double> dir;
+    for (int a = 0; a < nt; a++) {
+      const double fl = std::hypot(frs[2 * a], frs[2 * a + 1]);
+      if (!list[a].alive || !(fl > 0.0)) continue;
+      live.push_back(a);
+      dir.push_back(frs[2 * a] / fl);
+      dir.push_back(frs[2 * a + 1] / fl);
+    }
     std::vector<double> Jl;
-    j_integrals(live, Jl);
+    j_integrals(live, dir, Jl);
     for (size_t k = 0; k < live.size(); k++) Jt[live[k]] = Jl[k];
   }
 
@@ -538,7 +564,7 @@ void TLSPHCrackTips::grow()
     if (!tp.alive) continue;
     // the faces' jump at the samples, normal and tangential to the faces
     double rr[NK], jn[NK], jt[NK];
-    double fr[2] = {0.0, 0.0};    // the faces' mean direction: the frame of K_I, K_II
+    const double fr[2] = {frs[2 * a], frs[2 * a + 1]};    // the frame of K_I, K_II
     int cnt = 0;
     for (int k = 0; k < NK; k++) {
       const int q = a * NK + k;
@@ -546,8 +572,6 @@ void TLSPHCrackTips::grow()
       if (!ok[q] || !(S[0] > 0.0) || !(S[3] > 0.0)) continue;
       const double dux = S[1] / S[0] - S[4] / S[3], duy = S[2] / S[0] - S[5] / S[3];
       const double tx = T[2 * q], ty = T[2 * q + 1];
-      fr[0] += tx;
-      fr[1] += ty;
       rr[cnt] = rk[k];
       jn[cnt] = -ty * dux + tx * duy;
       jt[cnt] = tx * dux + ty * duy;

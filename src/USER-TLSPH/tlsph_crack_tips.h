@@ -97,7 +97,7 @@ class TLSPHCrackTips : protected Pointers {
   void refresh_cells();
   void volume_near(const std::vector<std::array<double, 2>> &pts, double R, std::vector<double> &vol);
 
-  void j_integrals(const std::vector<int> &live, std::vector<double> &J);
+  void j_integrals(const std::vector<int> &live, const std::vector<double> &dir, std::vector<double> &J);
 
   void find_tips();
 };

@@ -1,7 +1,7 @@
 """Crack-tip tracking with K from the domain J-integral (pair_style
 tlsph/damage criterion tip kfit j), verified against theory (issue 26,
-"each ingredient verified"); ctest examples.tip-j.kcheck and
-examples.tip-j.speedlaw.
+"each ingredient verified"); ctest examples.tip-j.kcheck,
+examples.tip-j.speedlaw, examples.tip-j.kink and examples.tip-j.kalthoff.
 
 --case kcheck: bench/in.kcheck, a central crack 2a = 10 mm in an 80 x 80 mm
   glass plate under remote tension (mode I) or remote shear (mode II) of
@@ -23,8 +23,31 @@ examples.tip-j.speedlaw.
   of G0 (bench/speedlaw.md, e27a014: +0.022 and +0.035 c_R, G 1.02 and
   1.09 G0; at 0.5 mm +0.038 and +0.047 c_R; with the displacement-correlation
   K, kfit tip, the speed is 0.13 to 0.27 c_R too high).
+--case kink: the central crack of bench/in.kcheck at dx = 1 mm under remote
+  shear (mode II) of 1 MPa applied at once, G_c 0.3 J/m^2 (the static
+  G = K_II^2 / E' is 0.47 J/m^2 and the maximum-tangential-stress rule's
+  K_eq^2 / E' 4/3 of it), no branching, no damping. Theory: each tip
+  kinks by the pure mode II angle of the maximum tangential stress rule,
+  -70.53 deg from its line (K_I = 0 on the closed faces), and the kinked
+  crack, loaded in mode I by the remote shear, keeps running. Checks: the
+  first segment's direction within 2 deg of -70.53 deg, each kinked tip
+  grown more than 20 mm by 60 us, the two tips point-symmetric. (The
+  field is antisymmetric about the crack line, so W is the same on both
+  faces and J along the new segment is right here too: the next case is
+  the one with unequal faces.)
+--case kalthoff: examples/kalthoff-2d at dx = 1.67 mm with kfit j (the rest
+  the recommended model), 100 us. The notch faces are closed (K_I = 0), so
+  theory puts the first segment at the pure mode II kink of the maximum
+  tangential stress rule, 70.53 deg from the notch; in the experiment the
+  two cracks cross the plate. Checks: the first segment within 1 deg of
+  70.53 deg (upper tip, +; lower, -), each tip grown more than 60 mm by
+  100 us, the two tips mirror images. This is the case the kink check
+  above cannot catch: the impacted strip below the upper notch holds far
+  more strain energy than the plate above it, so J along the new segment
+  with the notch faces in its domain was wrong by W (m . e) over them (J fell
+  below zero and the tips stopped 0.002 mm after the kink).
 
-    check_tip_j.py --lmp LMP --bench DIR --workdir DIR --case kcheck|speedlaw
+    check_tip_j.py --lmp LMP --bench DIR --workdir DIR --case kcheck|speedlaw|kink|kalthoff
 Prints PASSED or FAILED (ctest matches PASSED) and exits 0 / 1.
 """
 
@@ -120,15 +143,75 @@ def speedlaw(a):
     return verdict(checks)
 
 
+def kink(a):
+    log = os.path.join(a.workdir, "kink.log")
+    cmd = [os.path.abspath(a.lmp), "-in", os.path.join(a.bench, "in.kcheck"), "-log", log, "-screen", "none",
+           "-var", "dx", "0.001", "-var", "mode", "II", "-var", "kfit", "j", "-var", "gc", "0.3",
+           "-var", "relax", "no", "-var", "branch", "0", "-var", "chunk", "10", "-var", "nchunk", "60"]
+    if not run_lammps(cmd, cwd=a.workdir):
+        return 1
+    # the thermo rows (the tips' messages, "pair ...", may come between them)
+    rows = []
+    with open(log) as f:
+        for l in f:
+            c = l.split()
+            if len(c) == 15 and re.match(r"^\d+$", c[0]):
+                rows.append([float(v) for v in c])
+    d = np.array(rows)    # step time KI1 KII1 KI2 KII2 E_strain E1 x1 y1 len1 x2 y2 len2 G1/Gc
+    x1, y1, l1, x2, y2, l2 = d[:, 8], d[:, 9], d[:, 10], d[:, 11], d[:, 12], d[:, 13]
+    a0 = 0.005
+    grown = l1 - l1[0]
+    # tip 1 starts at (-a, 0) and runs in -x: its kink angle from that line
+    # (positive counter-clockwise seen along -x, i.e. the angle of (-dx, -dy))
+    first = np.nonzero((grown > 0.5e-3) & (grown < 4.0e-3))[0]
+    ang = (math.degrees(math.atan2(-(y1[first[0]]), -(x1[first[0]] + a0))) if len(first) else float("nan"))
+    # pure mode II (K_I = 0, K_II > 0): cos(theta) = 1/3, theta = -70.53 deg
+    theory = -math.degrees(math.acos(1.0 / 3.0))
+    t60 = d[:, 1] <= 60e-6
+    g60 = grown[t60].max() if t60.any() else 0.0
+    sym = max(np.abs(x1 + x2).max(), np.abs(y1 + y2).max(), np.abs(l1 - l2).max())
+    print(f"kink: first segment at {ang:.2f} deg (theory {theory:.2f}), grown {g60 * 1e3:.1f} mm by 60 us, "
+          f"{grown[-1] * 1e3:.1f} mm at the end ({d[-1, 1] * 1e6:.1f} us), symmetry {sym:.2g} m")
+    checks = [(f"first segment {ang:.2f} deg within 2 deg of {theory:.2f}", abs(ang - theory) <= 2.0),
+              (f"the kinked tips grow: {g60 * 1e3:.1f} mm > 20 mm by 60 us", g60 > 0.020),
+              (f"the tips point-symmetric ({sym:.2g} m <= 1e-7 m, the log's 8 digits)", sym <= 1e-7)]
+    return verdict(checks)
+
+
+def kalthoff(a):
+    root = os.path.dirname(os.path.abspath(a.bench))
+    out = os.path.join(a.workdir, "kalthoff")
+    cmd = [os.path.abspath(a.lmp), "-in", os.path.join(root, "examples", "kalthoff-2d", "in.kalthoff-2d"),
+           "-log", out + ".log", "-screen", "none", "-var", "dx", "0.00166666666666667", "-var", "tend", "100e-6",
+           "-var", "kfit", "j", "-var", "tips", "1", "-var", "timg", "0", "-var", "tfull", "0",
+           "-var", "matfile", os.path.join(root, "potentials", "tlsph_materials.tlsph"), "-var", "out", out]
+    if not run_lammps(cmd, cwd=a.workdir):
+        return 1
+    d = np.loadtxt(out + ".tips", ndmin=2)    # time, then x y length G/Gc of the upper and the lower tip
+    t, x1, y1, l1, x2, y2, l2 = d[:, 0], d[:, 1], d[:, 2], d[:, 3], d[:, 5], d[:, 6], d[:, 7]
+    x0, y0 = x1[0], y1[0]
+    grown = l1 - l1[0]
+    first = np.nonzero((grown > 0.5e-3) & (grown < 4.0e-3))[0]
+    ang = math.degrees(math.atan2(y1[first[0]] - y0, x1[first[0]] - x0)) if len(first) else float("nan")
+    theory = math.degrees(math.acos(1.0 / 3.0))
+    mirror = max(np.abs(x1 - x2).max(), np.abs(y1 + y2).max(), np.abs(l1 - l2).max())
+    print(f"kalthoff: first segment at {ang:.2f} deg (theory {theory:.2f}), grown {grown[-1] * 1e3:.1f} mm "
+          f"by {t[-1] * 1e6:.1f} us, tips at ({x1[-1] * 1e3:.1f}, {y1[-1] * 1e3:.1f}) mm, mirror {mirror:.2g} m")
+    checks = [(f"first segment {ang:.2f} deg within 1 deg of {theory:.2f}", abs(ang - theory) <= 1.0),
+              (f"the kinked tips grow: {grown[-1] * 1e3:.1f} mm > 60 mm by 100 us", grown[-1] > 0.060),
+              (f"the two tips mirror images ({mirror:.2g} m <= 1e-9 m)", mirror <= 1e-9)]
+    return verdict(checks)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--lmp", required=True)
     ap.add_argument("--bench", required=True)
     ap.add_argument("--workdir", required=True)
-    ap.add_argument("--case", required=True, choices=["kcheck", "speedlaw"])
+    ap.add_argument("--case", required=True, choices=["kcheck", "speedlaw", "kink", "kalthoff"])
     a = ap.parse_args()
     os.makedirs(a.workdir, exist_ok=True)
-    return kcheck(a) if a.case == "kcheck" else speedlaw(a)
+    return {"kcheck": kcheck, "speedlaw": speedlaw, "kink": kink, "kalthoff": kalthoff}[a.case](a)
 
 
 if __name__ == "__main__":
