@@ -10,7 +10,7 @@
 #   bash bench/kfit_fracture.sh
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-export KDX="${KDX-1.67 1.33 1.0}" BDX="${BDX-0.5 0.333 0.286 0.222}" NO_REPORT=1
+export KDX="${KDX-1.67 1.33 1.11 1.0 0.833 0.667 0.5}" BDX="${BDX-0.5 0.333 0.286 0.222}" NO_REPORT=1
 mkdir -p "$HERE/out"
 bash "$HERE/fracture.sh" tip-yoffe > "$HERE/out/kfit-fracture-1.txt" 2>&1 &
 p1=$!
