@@ -107,7 +107,7 @@ def table(res):
          _yes(b['speed_max'] <= A.RAYLEIGH_GLASS.value)),
         ('Kalthoff-Winkler 2D, 16.5 m/s, dx = 1 mm', '', '', '', ''),
         ('crack angle to the impact (upper / lower)',
-         f"{k['angle_upper']:.2f} / {k['angle_lower']:.2f} deg",
+         f"{k['angle_upper']:.3f} / {k['angle_lower']:.3f} deg",
          f"{A.THESIS_KW_ANGLE.value:g} deg (experiment ~{A.EXP_KW_ANGLE.value:g})",
          f"{lo:g}-{hi:g} deg",
          _yes(A.in_band(k['angle_upper'], A.KW_ANGLE_BAND) and A.in_band(k['angle_lower'], A.KW_ANGLE_BAND))),
