@@ -5,7 +5,9 @@
 # SIMD step and with 'simd no' (the scalar step), in ONE invocation, ROUNDS
 # (7) rounds alternating, medians and minima of the loop times; and criterion tip under
 # 8x the load (8 MPa), where most tips grow, cut bonds and some branch
-# (tip-grow, SIMD step). Writes bench/manytips.md.
+# (tip-grow, SIMD step); and criterion tip with kfit j (the recommended
+# model: a domain J-integral per tip and step) at 1 and 8 MPa (tipj,
+# tipj-grow). Writes bench/manytips.md.
 #   bash bench/manytips.sh          (LMP_TLSPH= another binary)
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -14,12 +16,15 @@ OUT="$HERE/out/manytips"
 mkdir -p "$OUT"
 : > "$OUT/times.txt"
 for r in $(seq 1 "${ROUNDS:-7}"); do
-  for m in tlsph tlsph-scalar tension tension-scalar tip tip-scalar tip-grow; do
+  for m in tlsph tlsph-scalar tension tension-scalar tip tip-scalar tip-grow tipj tipj-grow; do
     model=${m%-scalar}
     simd=(); [ "$m" != "$model" ] && simd=(env TLSPH_SIMD=no)
-    load=1e6
+    load=1e6 kfit=tip
     [ "$m" = tip-grow ] && model=tip load=8e6
-    "${simd[@]}" "$LMP" -in "$HERE/in.manytips" -var model "$model" -var load "$load" -log "$OUT/$m-$r.log" -screen none > /dev/null
+    [ "$m" = tipj ] && model=tip kfit=j
+    [ "$m" = tipj-grow ] && model=tip kfit=j load=8e6
+    "${simd[@]}" "$LMP" -in "$HERE/in.manytips" -var model "$model" -var load "$load" -var kfit "$kfit" \
+      -log "$OUT/$m-$r.log" -screen none > /dev/null
     echo "$m $(grep '^Loop time' "$OUT/$m-$r.log" | tail -1 | awk '{print $4}')" >> "$OUT/times.txt"
   done
 done
@@ -56,12 +61,16 @@ for m in ("tlsph", "tlsph-scalar", "tension", "tension-scalar", "tip", "tip-scal
     print("| %s | %s | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |" % (
         names[base], "simd no (scalar)" if scalar else "SIMD step", med[m], low[m], med[m] / med["tlsph" + suf],
         med[m] / med["tlsph"], med[m] / med["tension" + suf], low[m] / low["tlsph"]))
-g = open(out + "/tip-grow-1.log").read()
-print("| tlsph/damage criterion tip branch yoffe, 8 MPa: %d tips grow, %d branch, %d leave the body "
-      "(round 1) | SIMD step | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |" % (
-          len(re.findall(r"grows, K_I", g)), len(re.findall(r"branches", g)), len(re.findall(r"stops at", g)),
-          med["tip-grow"], low["tip-grow"], med["tip-grow"] / med["tlsph"], med["tip-grow"] / med["tlsph"],
-          med["tip-grow"] / med["tension"], low["tip-grow"] / low["tlsph"]))
+for m, label in (("tip-grow", "tlsph/damage criterion tip branch yoffe"),
+                 ("tipj", "tlsph/damage criterion tip branch yoffe kfit j (the recommended model)"),
+                 ("tipj-grow", "tlsph/damage criterion tip branch yoffe kfit j")):
+    g = open(out + "/" + m + "-1.log").read()
+    if m.endswith("grow"):
+        label += ", 8 MPa: %d tips grow, %d branch, %d leave the body (round 1)" % (
+            len(re.findall(r"grows, K_I", g)), len(re.findall(r"branches", g)), len(re.findall(r"stops at", g)))
+    print("| %s | SIMD step | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |" % (
+        label, med[m], low[m], med[m] / med["tlsph"], med[m] / med["tlsph"], med[m] / med["tension"],
+        low[m] / low["tlsph"]))
 print("\n(tlsph's and tension's cost does not depend on the load: the rows under 1 MPa are their baseline. "
       "Under 1 MPa no tip grows: the tips' cost there is their K measurement every step.)")
 PY
