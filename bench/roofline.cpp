@@ -77,6 +77,22 @@ __attribute__((target("avx2,fma"))) static double avx2_fma_gflops(long iters)
   (void) sink;
   return 2.0 * 4.0 * 12.0 * iters / t * 1e-9;
 }
+
+__attribute__((target("avx512f"))) static double avx512_fma_gflops(long iters)
+{
+  __m512d x[12];
+  for (int k = 0; k < 12; k++) x[k] = _mm512_set1_pd(1.0 + 1e-3 * k);
+  const __m512d m = _mm512_set1_pd(0.999999), a = _mm512_set1_pd(1e-7);
+  const double t0 = now();
+  for (long it = 0; it < iters; it++)
+    for (int k = 0; k < 12; k++) x[k] = _mm512_fmadd_pd(x[k], m, a);
+  const double t = now() - t0;
+  __m512d s = _mm512_setzero_pd();
+  for (int k = 0; k < 12; k++) s = _mm512_add_pd(s, x[k]);
+  volatile double sink = _mm512_reduce_add_pd(s);
+  (void) sink;
+  return 2.0 * 8.0 * 12.0 * iters / t * 1e-9;
+}
 #endif
 
 int main(int argc, char **argv)
@@ -103,6 +119,14 @@ int main(int argc, char **argv)
       if (g > best) best = g;
     }
     std::printf("avx2_fma_gflops %.2f\n", best);
+  }
+  if (__builtin_cpu_supports("avx512f")) {
+    best = 0.0;
+    for (int r = 0; r < 3; r++) {
+      const double g = avx512_fma_gflops(iters / 4);
+      if (g > best) best = g;
+    }
+    std::printf("avx512_fma_gflops %.2f\n", best);
   }
 #endif
   return 0;

@@ -89,6 +89,75 @@ def counts(dim, nb):
     }
 
 
+def simd_counts(dim, nb, own):
+    """flops and bytes per particle-step of the two passes of the SIMD step
+    (tlsph_ell_vec.h: ell_deformation_stencil with ell_stress_lanes, and
+    ell_force_stencil; quadratic gradient, viscosity and hourglass on, one
+    material). own: the fraction of particles whose chunk streams its own
+    bond blocks (the others read a shared pattern, from the cache, and
+    stream no bond data). Same conventions as counts(); the partners'
+    columns are reused from the cache, the particles' own columns and the
+    per-atom arrays the passes write by LAMMPS index are streamed."""
+    D = dim
+    NB = 5 if D == 2 else 9            # quadratic basis
+    lead = nb / 2.0                    # pair forces once per bond, by the earlier end
+    packed = 2 * D * D + 1 + D * NB    # F, K, alpha, R = V P Q
+    # deformation, per bond: dx, X, du (3D), F += du (x) g (D^2 FMA)
+    fl_def_bond = 3 * D + 2 * D * D
+    # per particle: F = I + Fa, Green-Lagrange, SVK stress and energy, det, P = F S,
+    # F^-1 and K = J F^-T (as counts()), R = V P Q (D NB (D FMA + 1)), V P s (3 D^2)
+    fl_def_part = D * D + 63 + 46 + 14 + 54 + 46 + D * NB * (2 * D + 1) + 3 * D * D
+    by_def_bond = own * (4 + 8 * D)    # partner index (one int per lane and slot), g
+    # own columns x, x0 (read), Q, s, V (read), packed row and V P s (written),
+    # the per-atom F, P, psi, e_hg, fown (written, by LAMMPS index)
+    by_def_part = 8 * (2 * D + D * NB + D + 1) + 8 * (packed + D) + 8 * (9 + 9 + 1 + 1 + 3)
+    # forces, every bond (the stress term gathered): s = (X_i - X_j)/h (2D), the
+    # basis (NB - D products), R_j p (D NB FMA), a -= c_ij (...) (2D)
+    fl_frc_bond = 2 * D + (NB - D) + 2 * D * NB + 2 * D
+    # once per bond: as counts() (the same pair terms), plus the partner's
+    # accumulators (2D subtractions)
+    fl_frc_lead = D + (3 * D + 3) + (3 * D + 17) + (3 * D * D + 2 * D) + \
+        (3 * D * D + 3 * D + 9) + 2 * D + 2 * D
+    fl_frc_part = 6 * D                # the sums into f, f_hg, f_visc
+    by_frc_bond = own * (4 + 8)        # partner index, c_ij
+    by_frc_lead = own * 16             # the viscous and hourglass weights
+    # own columns x, v, x0, F, K, alpha, V, V P s, the accumulators (zeroed,
+    # read); f (read, written), f_hg, f_visc (written), the type
+    by_frc_part = 8 * (3 * D + 2 * D * D + 1 + 1 + D + 2 * 2 * D) + 48 + 24 + 24 + 4
+    return {
+        "deformation": {"flops": nb * fl_def_bond + fl_def_part,
+                        "bytes": nb * by_def_bond + by_def_part},
+        "forces": {"flops": nb * fl_frc_bond + lead * fl_frc_lead + fl_frc_part,
+                   "bytes": nb * by_frc_bond + lead * by_frc_lead + by_frc_part},
+    }
+
+
+def simd_own_fraction(log):
+    """the fraction of particles that stream their own bond blocks, from the
+    SIMD step's line in the log"""
+    m = re.search(r"SIMD step \((\w+), up to \d+ lanes\): (\d+) particles in \d+ chunks; (\d+) read "
+                  r"their bonds from \d+ shared pattern\(s\), (\d+) their own", open(log).read())
+    if not m:
+        return None, None
+    return m.group(1), int(m.group(4)) / int(m.group(2))
+
+
+def perf_simd_seconds(path):
+    """CPU seconds of the SIMD step's two passes (the ell_* kernels)"""
+    dfm = frc = 0
+    with open(path) as f:
+        for line in f:
+            m = re.match(r"\s*[0-9.]+%\s+(\d+)\s+\[(.)\]\s+(.*)", line)
+            if not m:
+                continue
+            n, sym = int(m.group(1)), m.group(3)
+            if "ell_" in sym and "::deformation<" in sym:
+                dfm += n
+            elif "ell_" in sym and "::forces<" in sym:
+                frc += n
+    return dfm / PERF_HZ, frc / PERF_HZ
+
+
 def read_kv(path):
     out = {}
     with open(path) as f:
@@ -190,6 +259,35 @@ def main():
                          "ns": ns, "gflops": fl / ns, "gbs": by / ns, "bound_s": bound_s,
                          "bound_v": bound_v, "ins": ins[pas], "ipc": ins[pas] / (ns * ghz),
                          "rate": rate})
+    # the SIMD step (roofline.sh, 2b)
+    peak_512 = c.get("avx512_fma_gflops", float("nan"))
+    srows = []
+    for dim, n in ((2, 190), (3, 34)):
+        fn = os.path.join(a.out, f"perf-simd-{dim}.steps")
+        if not os.path.exists(fn):
+            continue
+        nb = bonds_per_particle(dim, n)
+        with open(fn) as f:
+            p1, p2 = (int(x) for x in f.read().split())
+        log2 = os.path.join(a.out, f"perf-simd-{dim}-{p2}.log")
+        isa, own = simd_own_fraction(log2)
+        if own is None:
+            continue
+        cnt = simd_counts(dim, nb, own)
+        t, steps, natoms, _, _ = loop_info(log2)
+        rate = natoms * steps / t
+        d1, f1 = perf_simd_seconds(os.path.join(a.out, f"perf-simd-{dim}-{p1}.txt"))
+        d2, f2 = perf_simd_seconds(os.path.join(a.out, f"perf-simd-{dim}-{p2}.txt"))
+        npass = natoms * (p2 - p1)
+        pass_ns = {"deformation": 1e9 * (d2 - d1) / npass, "forces": 1e9 * (f2 - f1) / npass}
+        peak = peak_512 if isa == "avx512" else peak_v
+        for pas in ("deformation", "forces"):
+            fl, by = cnt[pas]["flops"], cnt[pas]["bytes"]
+            ns = pass_ns[pas]
+            srows.append({"dim": dim, "pass": pas, "nb": nb, "own": own, "isa": isa, "flops": fl,
+                          "bytes": by, "ai": fl / by, "ns": ns, "gflops": fl / ns, "gbs": by / ns,
+                          "bound": max(fl / peak, by / bw), "bound_f": fl / peak, "bound_m": by / bw,
+                          "rate": rate, "peak": peak})
     # ------------------------------------------------------------ report
     try:    # the commit the measurements were made with (roofline.sh writes it)
         with open(os.path.join(a.out, "commit.txt")) as f:
@@ -207,8 +305,9 @@ def main():
           f"| the same triad in the last-level cache (3 x 2 MiB) | {bw3:.1f} GB/s |",
           f"| scalar multiply-add peak (SSE2 code, as the package is built) | {peak_s:.1f} GFLOP/s |",
           f"| AVX2 FMA peak (256-bit, two pipes) | {peak_v:.1f} GFLOP/s |",
+          f"| AVX-512 FMA peak (512-bit) | {peak_512:.1f} GFLOP/s |",
           f"| clock inferred from the FMA peak (16 flops per cycle) | {ghz:.2f} GHz |", "",
-          "## The passes against the ceilings", "",
+          "## The scalar step (simd no) against the ceilings", "",
           "Flops and bytes per particle-step counted from the source (bench/roofline.py: "
           "conventions, +-15 %); time per particle-step of a pass = its CPU time in the perf "
           "samples (perf, cpu-clock at 2 kHz), the difference of two run lengths; instructions per particle-step of a pass from "
@@ -237,6 +336,41 @@ def main():
                   f"{bv:.0f} ns (AVX2), i.e. at most {1e3 / bs:.1f} / {1e3 / bv:.1f} M "
                   "particle-steps/s from the passes alone, before integration and communication.")
     md.append("")
+    if srows:
+        md += ["## The SIMD step (the default) against the ceilings", "",
+               "The same blocks with the SIMD step (tlsph_ell.h, tlsph_ell_vec.h; the kernels of "
+               "the instruction set named, chosen at run time). Flops and bytes per particle-step "
+               "counted from its kernels (bench/roofline.py, simd_counts: the same conventions; the "
+               "flops are those of the scalar math plus R = V P Q and the gathered stress term, "
+               "each bond's stress term computed at both ends, its pair forces at one); bytes: "
+               "only the particles whose chunk has its own bond blocks stream bond data (the "
+               "others read one pattern shared by the whole lattice interior, from the cache), "
+               "and every particle streams its own columns and the per-atom arrays the passes "
+               "write. Time per pass: the perf samples of the ell_* kernels, the difference of two "
+               "run lengths. Bound = max(flops / the kernels' FMA peak, bytes / DRAM bandwidth).",
+               "",
+               "| case | kernels | pass | bonds/particle | own bond blocks | flops | bytes | flop/byte | "
+               "measured ns | GFLOP/s | GB/s | bound: flops [ns] | bound: bytes [ns] | measured / bound |",
+               "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+        for r in srows:
+            md.append(f"| {r['dim']}D | {r['isa']} | {r['pass']} | {r['nb']:.1f} | {100 * r['own']:.0f} % | "
+                      f"{r['flops']:.0f} | {r['bytes']:.0f} | {r['ai']:.2f} | {r['ns']:.1f} | "
+                      f"{r['gflops']:.2f} | {r['gbs']:.2f} | {r['bound_f']:.1f} | {r['bound_m']:.1f} | "
+                      f"{r['ns'] / r['bound']:.1f}x |")
+        md.append("")
+        for dim in (2, 3):
+            rs = [r for r in srows if r["dim"] == dim]
+            if not rs:
+                continue
+            step = 1e9 / rs[0]["rate"]
+            b = sum(r["bound"] for r in rs)
+            passes = sum(r["ns"] for r in rs)
+            md.append(f"- {dim}D, SIMD step: measured {rs[0]['rate'] / 1e6:.2f} M particle-steps/s "
+                      f"({step:.0f} ns per particle-step, the two passes {passes:.0f} ns = "
+                      f"{100 * passes / step:.0f} %); the two passes' bound {b:.0f} ns, i.e. at most "
+                      f"{1e3 / b:.1f} M particle-steps/s from the passes alone; the passes run at "
+                      f"{passes / b:.1f}x their bound.")
+        md.append("")
     with open(os.path.join(a.doc, "roofline.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     print("\n".join(md))
@@ -252,10 +386,16 @@ def main():
         ax.plot(r["ai"], r["gflops"], "o" if r["pass"] == "forces" else "s", ms=8,
                 color="C0" if r["dim"] == 2 else "C2",
                 label=f"{r['dim']}D {r['pass']} ({r['gflops']:.2f} GFLOP/s, IPC {r['ipc']:.1f})")
+    for r in srows:
+        ax.plot(r["ai"], r["gflops"], "^" if r["pass"] == "forces" else "v", ms=8,
+                color="C4" if r["dim"] == 2 else "C5",
+                label=f"{r['dim']}D {r['pass']}, SIMD step ({r['gflops']:.2f} GFLOP/s)")
+    if peak_512 == peak_512:
+        ax.axhline(peak_512, color="C6", lw=1, label=f"AVX-512 FMA peak {peak_512:.0f} GFLOP/s")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlim(0.1, 30)
-    ax.set_ylim(0.3, 100)
+    ax.set_ylim(0.3, 200)
     ax.set_xlabel("arithmetic intensity [flop / byte]")
     ax.set_ylabel("GFLOP/s (one core)")
     ax.grid(True, which="both", lw=0.3)

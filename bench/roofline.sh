@@ -9,6 +9,7 @@
 #      each pass per particle-step (the difference of the two runs' samples);
 #   3. instructions per particle-step of each pass (callgrind, smaller blocks,
 #      difference of two run lengths);
+#   2b. the same for the SIMD step (the default);
 #   4. bench/roofline.py: flops and bytes per particle-step of each pass
 #      counted from the source (tlsph_particle.h) with the measured bonds per
 #      particle, against the ceilings.
@@ -49,7 +50,22 @@ for c in "2 190 60 260" "3 34 10 40"; do
   echo "$3 $4" > "$OUT/perf-$dim.steps"
 done
 
+# 2b. the same for the SIMD step (the default: AVX-512 or AVX2 kernels chosen
+#     at run time), longer runs since it is faster
+for c in "2 190 200 800" "3 34 40 160"; do
+  set -- $c; dim=$1 n=$2
+  for ns in $3 $4; do
+    (cd "$OUT" && env -u TLSPH_SIMD perf record -q -e cpu-clock -F 2000 -o "$OUT/perf-simd-$dim-$ns.data" -- \
+       "$LMP" -in "$blk" -var dim $dim -var n $n -var nsteps $ns -log "$OUT/perf-simd-$dim-$ns.log" \
+       -screen none > /dev/null 2>&1)
+    perf report -i "$OUT/perf-simd-$dim-$ns.data" --stdio --no-children -F overhead,sample,sym 2>/dev/null \
+      | grep -E '^ +[0-9.]+%' > "$OUT/perf-simd-$dim-$ns.txt" || true
+  done
+  echo "$3 $4" > "$OUT/perf-simd-$dim.steps"
+done
+
 # 3. instructions per step of each pass (inclusive, callgrind), N2 - N1 steps
+#    (the scalar step only: valgrind runs no AVX-512 code)
 for c in "2 60 10 30" "3 12 4 12"; do
   set -- $c; dim=$1 n=$2 n1=$3 n2=$4
   for ns in $n1 $n2; do
