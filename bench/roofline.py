@@ -142,22 +142,6 @@ def simd_own_fraction(log):
     return m.group(1), int(m.group(4)) / int(m.group(2))
 
 
-def perf_simd_seconds(path):
-    """CPU seconds of the SIMD step's two passes (the ell_* kernels)"""
-    dfm = frc = 0
-    with open(path) as f:
-        for line in f:
-            m = re.match(r"\s*[0-9.]+%\s+(\d+)\s+\[(.)\]\s+(.*)", line)
-            if not m:
-                continue
-            n, sym = int(m.group(1)), m.group(3)
-            if "ell_" in sym and "::deformation<" in sym:
-                dfm += n
-            elif "ell_" in sym and "::forces<" in sym:
-                frc += n
-    return dfm / PERF_HZ, frc / PERF_HZ
-
-
 def read_kv(path):
     out = {}
     with open(path) as f:
@@ -170,9 +154,10 @@ def read_kv(path):
 PERF_HZ = 2000.0    # perf record -F of roofline.sh (cpu-clock: one sample per 0.5 ms of CPU)
 
 
-def perf_pass_seconds(path):
-    """CPU seconds of the deformation and force passes (all their template
-    variants) and of the whole process, from a perf report with sample counts"""
+def perf_samples(path, is_dfm, is_frc):
+    """CPU seconds of the deformation and force passes (the symbols the two
+    predicates pick) and of the whole process, from a perf report with
+    sample counts"""
     dfm = frc = tot = 0
     with open(path) as f:
         for line in f:
@@ -181,11 +166,23 @@ def perf_pass_seconds(path):
                 continue
             n, sym = int(m.group(1)), m.group(3)
             tot += n
-            if "compute_deformation" in sym or "particle_stress" in sym:
+            if is_dfm(sym):
                 dfm += n
-            elif "particle_force_bonds" in sym or "compute_forces" in sym:
+            elif is_frc(sym):
                 frc += n
     return dfm / PERF_HZ, frc / PERF_HZ, tot / PERF_HZ
+
+
+def perf_pass_seconds(path):
+    """the scalar step's passes (all their template variants)"""
+    return perf_samples(path, lambda s: "compute_deformation" in s or "particle_stress" in s,
+                        lambda s: "particle_force_bonds" in s or "compute_forces" in s)
+
+
+def perf_simd_seconds(path):
+    """the SIMD step's passes (the ell_* kernels)"""
+    return perf_samples(path, lambda s: "ell_" in s and "::deformation<" in s,
+                        lambda s: "ell_" in s and "::forces<" in s)[:2]
 
 
 def loop_info(log):

@@ -9,7 +9,7 @@
 #      each pass per particle-step (the difference of the two runs' samples);
 #   3. instructions per particle-step of each pass (callgrind, smaller blocks,
 #      difference of two run lengths);
-#   2b. the same for the SIMD step (the default);
+#      the same for the SIMD step (the default);
 #   4. bench/roofline.py: flops and bytes per particle-step of each pass
 #      counted from the source (tlsph_particle.h) with the measured bonds per
 #      particle, against the ceilings.
@@ -36,33 +36,26 @@ g++ -O3 -o "$OUT/roofline" "$HERE/roofline.cpp"
 "$OUT/roofline" > "$OUT/ceilings.txt"
 cat "$OUT/ceilings.txt"
 
-# 2. throughput and the share of each pass (perf sampling, 1 rank)
+# 2. throughput and the share of each pass (perf sampling, 1 rank), for the
+#    scalar step (prefix perf-) and the SIMD step (perf-simd-: the default,
+#    AVX-512 or AVX2 kernels chosen at run time), the same run lengths (longer
+#    2D SIMD runs slow down: 8.5 ms per step over 800 steps against 5.2 over
+#    200, not investigated)
 blk="$HERE/in.bench"
-for c in "2 190 60 260" "3 34 10 40"; do
-  set -- $c; dim=$1 n=$2
-  for ns in $3 $4; do
-    (cd "$OUT" && perf record -q -e cpu-clock -F 2000 -o "$OUT/perf-$dim-$ns.data" -- \
-       "$LMP" -in "$blk" -var dim $dim -var n $n -var nsteps $ns -log "$OUT/perf-$dim-$ns.log" \
-       -screen none > /dev/null 2>&1)
-    perf report -i "$OUT/perf-$dim-$ns.data" --stdio --no-children -F overhead,sample,sym 2>/dev/null \
-      | grep -E '^ +[0-9.]+%' > "$OUT/perf-$dim-$ns.txt" || true
+for step in scalar simd; do
+  pre=perf; envs=()
+  [ $step = simd ] && pre=perf-simd envs=(-u TLSPH_SIMD)
+  for c in "2 190 60 260" "3 34 10 40"; do
+    set -- $c; dim=$1 n=$2
+    for ns in $3 $4; do
+      (cd "$OUT" && env "${envs[@]}" perf record -q -e cpu-clock -F 2000 -o "$OUT/$pre-$dim-$ns.data" -- \
+         "$LMP" -in "$blk" -var dim $dim -var n $n -var nsteps $ns -log "$OUT/$pre-$dim-$ns.log" \
+         -screen none > /dev/null 2>&1)
+      perf report -i "$OUT/$pre-$dim-$ns.data" --stdio --no-children -F overhead,sample,sym 2>/dev/null \
+        | grep -E '^ +[0-9.]+%' > "$OUT/$pre-$dim-$ns.txt" || true
+    done
+    echo "$3 $4" > "$OUT/$pre-$dim.steps"
   done
-  echo "$3 $4" > "$OUT/perf-$dim.steps"
-done
-
-# 2b. the same for the SIMD step (the default: AVX-512 or AVX2 kernels chosen
-#     at run time), the same run lengths (longer 2D runs slow down: 8.5 ms per
-#     step over 800 steps against 5.2 over 200, not investigated)
-for c in "2 190 60 260" "3 34 10 40"; do
-  set -- $c; dim=$1 n=$2
-  for ns in $3 $4; do
-    (cd "$OUT" && env -u TLSPH_SIMD perf record -q -e cpu-clock -F 2000 -o "$OUT/perf-simd-$dim-$ns.data" -- \
-       "$LMP" -in "$blk" -var dim $dim -var n $n -var nsteps $ns -log "$OUT/perf-simd-$dim-$ns.log" \
-       -screen none > /dev/null 2>&1)
-    perf report -i "$OUT/perf-simd-$dim-$ns.data" --stdio --no-children -F overhead,sample,sym 2>/dev/null \
-      | grep -E '^ +[0-9.]+%' > "$OUT/perf-simd-$dim-$ns.txt" || true
-  done
-  echo "$3 $4" > "$OUT/perf-simd-$dim.steps"
 done
 
 # 3. instructions per step of each pass (inclusive, callgrind), N2 - N1 steps
