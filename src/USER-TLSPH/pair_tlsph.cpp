@@ -1457,11 +1457,16 @@ void PairTLSPH::unpack_forward_comm(int n, int first, double *buf)
 
 void PairTLSPH::cauchy_stress(int i, double *sigma) const
 {
+  cauchy_stress(i, F[i], sigma);
+}
+
+void PairTLSPH::cauchy_stress(int i, const double *Fin, double *sigma) const
+{
   const Material &m = mat[atom->type[i]];
-  // sigma = P F^T / J from the stored F, with the particle's own law
+  // sigma = P F^T / J from F, with the particle's own law
   auto cauchy = [&](const auto &law) {
     double Fi[9], E[9], S[9], P[9];
-    mat_copy(F[i], Fi);
+    for (int k = 0; k < 9; k++) Fi[k] = Fin[k];
     if (dim == 2) Fi[8] = 1.0;
     green_lagrange(Fi, E);
     law.stress(E, S);

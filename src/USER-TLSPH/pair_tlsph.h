@@ -67,6 +67,8 @@ class PairTLSPH : public Pair {
   double smoothing_length() const { return h; }
   double max_wave_speed() const;
   void cauchy_stress(int i, double *sigma) const;
+  // the same from a given F (3 x 3) instead of the stored one
+  void cauchy_stress(int i, const double *Fi, double *sigma) const;
   void green_lagrange_strain(int i, double *E) const;
   const double *deformation_gradient(int i) const { return F[i]; }
   // the first Piola-Kirchhoff stress P of particle i's law at the deformation

@@ -164,6 +164,14 @@ bool PairTLSPHDamage::material_key(int type, const std::string &key, double v,
     Gc.assign(atom->ntypes + 1, 0.0);
     sc_given.assign(atom->ntypes + 1, 0.0);
     sc.assign(atom->ntypes + 1, 0.0);
+    strength.assign(atom->ntypes + 1, 0.0);
+  }
+  if (key == "strength") {
+    if (!(v > 0.0))
+      error->all(FLERR, "{}: strength must be > 0 (the tensile strength at which 'criterion tip' "
+                        "nucleates a crack), got {}", where, v);
+    strength[type] = v;
+    return true;
   }
   if (key == "Gc") {
     if (v <= 0.0) error->all(FLERR, "{}: Gc must be > 0 (fracture energy), got {}", where, v);
@@ -195,31 +203,37 @@ void PairTLSPHDamage::check_material(int type, const std::string &where)
                       "stretch 'sc' instead", where);
 }
 
+// G_c, the given s_c and the strength (files whose settings carry no
+// strength mark, read_restart_settings, have the first two only)
 void PairTLSPHDamage::write_material_extra(FILE *fp, int type)
 {
-  double v[2] = {Gc[type], sc_given[type]};
-  fwrite(v, sizeof(double), 2, fp);
+  double v[3] = {Gc[type], sc_given[type], (int) strength.size() > type ? strength[type] : 0.0};
+  fwrite(v, sizeof(double), 3, fp);
 }
 
 void PairTLSPHDamage::read_material_extra(FILE *fp, int type)
 {
-  double v[2];
-  if (comm->me == 0) utils::sfread(FLERR, v, sizeof(double), 2, fp, nullptr, error);
-  MPI_Bcast(v, 2, MPI_DOUBLE, 0, world);
+  double v[3] = {0.0, 0.0, 0.0};
+  const int n = restart_has_strength ? 3 : 2;
+  if (comm->me == 0) utils::sfread(FLERR, v, sizeof(double), n, fp, nullptr, error);
+  MPI_Bcast(v, 3, MPI_DOUBLE, 0, world);
   if ((int) Gc.size() <= atom->ntypes) {
     Gc.assign(atom->ntypes + 1, 0.0);
     sc_given.assign(atom->ntypes + 1, 0.0);
     sc.assign(atom->ntypes + 1, 0.0);
+    strength.assign(atom->ntypes + 1, 0.0);
   }
   Gc[type] = v[0];
   sc_given[type] = v[1];
+  strength[type] = v[2];
 }
 
 void PairTLSPHDamage::write_restart_settings(FILE *fp)
 {
   PairTLSPH::write_restart_settings(fp);
+  // damping + 2: the materials' extra values carry the strength (3 values)
   double v[6] = {alpha_d, (double) absolute, (double) rebuild, (double) cracks.size(), family,
-                 (double) damping_linear};
+                 (double) damping_linear + 2.0};
   fwrite(v, sizeof(double), 6, fp);
   for (const auto &c : cracks) fwrite(c.data(), sizeof(double), 9, fp);
   // 'criterion tip': the settings, then every tip with its path (identical on all ranks)
@@ -234,6 +248,8 @@ void PairTLSPHDamage::read_restart_settings(FILE *fp)
   MPI_Bcast(v, 6, MPI_DOUBLE, 0, world);
   // a file of another layout (e.g. before 'family' and 'damping' were
   // stored) reads numbers out of place: refuse it with a message
+  restart_has_strength = (v[5] >= 2.0);
+  if (restart_has_strength) v[5] -= 2.0;
   const bool flag_ok = (v[1] == 0.0 || v[1] == 1.0) && (v[2] == 0.0 || v[2] == 1.0) &&
       (v[5] == 0.0 || v[5] == 1.0);
   if (!(flag_ok && v[0] >= 0.0 && v[3] >= 0.0 && v[3] == std::floor(v[3]) && v[3] < 1.0e6 &&
@@ -310,8 +326,18 @@ void PairTLSPHDamage::init_style()
         error->all(FLERR, "pair tlsph/damage: 'criterion tip' needs one material (all types alike)");
     // E' (plane stress E, plane strain E / (1 - nu^2)), G_c, and the Rayleigh
     // speed (Viktorov's approximation c_R = c_s (0.862 + 1.14 nu) / (1 + nu))
+    for (int t = 2; t <= atom->ntypes; t++)
+      if (mat[t].rho > 0.0 && (int) strength.size() > t && strength[t] != strength[1])
+        error->all(FLERR, "pair tlsph/damage: 'criterion tip' needs one material (all types "
+                          "alike): type {} has strength {}, type 1 {}", t, strength[t], strength[1]);
     crack->init(plane_stress ? m.E : m.E / (1.0 - m.nu * m.nu), Gc[1],
-                sqrt(m.mu / m.rho) * (0.862 + 1.14 * m.nu) / (1.0 + m.nu));
+                sqrt(m.mu / m.rho) * (0.862 + 1.14 * m.nu) / (1.0 + m.nu),
+                (int) strength.size() > 1 ? strength[1] : 0.0);
+  } else {
+    for (int t = 1; t < (int) strength.size(); t++)
+      if (strength[t] > 0.0)
+        error->all(FLERR, "pair tlsph/damage: type {}: strength (crack nucleation) needs "
+                          "'criterion tip'; the bond criteria break bonds anywhere already", t);
   }
   comm_forward = MAX(comm_forward, 1);
   comm_reverse = MAX(comm_reverse, 1);
@@ -659,6 +685,10 @@ void PairTLSPHDamage::update_bonds()
 
 void PairTLSPHDamage::after_deformation()
 {
+  if (tipmode) {
+    crack->note_pass();
+    crack->nucleate();
+  }
   const int nlocal = atom->nlocal;
 
   // damage phi = 1 - intact/initial (thesis Eq. 2.33), then its smoothed

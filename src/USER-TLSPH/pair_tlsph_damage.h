@@ -68,10 +68,13 @@ class PairTLSPHDamage : public PairTLSPH {
 
  protected:
   bool material_key(int, const std::string &, double, const std::string &) override;
-  const char *extra_material_keys() const override { return "; and one of Gc, sc"; }
+  const char *extra_material_keys() const override
+  {
+    return "; and one of Gc, sc; with 'criterion tip' also strength";
+  }
   bool is_extra_material_key(const std::string &key, double &) const override
   {
-    return key == "Gc" || key == "sc";
+    return key == "Gc" || key == "sc" || key == "strength";
   }
   void check_material(int, const std::string &) override;
   void write_material_extra(FILE *, int) override;
@@ -88,6 +91,8 @@ class PairTLSPHDamage : public PairTLSPH {
   double family;           // radius of the bond family (damage decisions, phi); 0: 2h
   int damping_linear;      // 0: alpha_d where phi' > 0 (thesis Eq. 2.35), 1: alpha + (alpha_d - alpha) phi'
   std::vector<double> Gc, sc_given, sc;    // per type: fracture energy, given s_c, s_c used
+  std::vector<double> strength;            // per type: tensile strength (criterion tip: nucleation; 0 none)
+  int restart_has_strength = 0;            // the restart file's materials carry it
   std::vector<double> stretch_up, stretch_down;    // per type pair: (1 +- s_c)^2
   std::vector<std::array<double, 9>> cracks;    // pre-cracks: 2D segments, 3D parallelograms
 

@@ -188,6 +188,67 @@ inline CrackK k_from_j(double J, const CrackK &kd, double Eprime)
   return CrackK{s * kd.KI, s * kd.KII};
 }
 
+/* Merging: the first point where a tip's move P -> Q meets the segment
+   A -> B (a piece of another crack, or of its own path further back), as the
+   fraction t of the move, 0 < t <= 1; -1 if it does not meet it. A segment
+   through P itself (t = 0: the path the tip grows from, or a sibling branch
+   born at the same point) does not count. A segment along the move's line
+   (collinear, e.g. two tips running head-on) is met where it begins. */
+inline double segment_crossing(const double *P, const double *Q, const double *A, const double *B)
+{
+  const double rx = Q[0] - P[0], ry = Q[1] - P[1];
+  const double sx = B[0] - A[0], sy = B[1] - A[1];
+  const double ax = A[0] - P[0], ay = A[1] - P[1];
+  const double rr = rx * rx + ry * ry, ss = sx * sx + sy * sy;
+  if (!(rr > 0.0)) return -1.0;
+  constexpr double tiny = 1.0e-12;
+  const double den = rx * sy - ry * sx;
+  if (std::fabs(den) > tiny * std::sqrt(rr * ss)) {
+    const double t = (ax * sy - ay * sx) / den, u = (ax * ry - ay * rx) / den;
+    return (t > tiny && t <= 1.0 && u >= 0.0 && u <= 1.0) ? t : -1.0;
+  }
+  // parallel: only a collinear segment meets the move
+  if (std::fabs(ax * ry - ay * rx) > tiny * rr) return -1.0;
+  const double t0 = (ax * rx + ay * ry) / rr, t1 = ((B[0] - P[0]) * rx + (B[1] - P[1]) * ry) / rr;
+  const double lo = std::fmin(t0, t1), hi = std::fmax(t0, t1);
+  if (!(hi > tiny) || lo > 1.0) return -1.0;
+  return lo > tiny ? lo : -1.0;
+}
+
+/* Nucleation: the largest principal stress s1 of a plane stress state and
+   its direction (angle phi from x, in (-pi/2, pi/2]); a crack nucleates
+   normal to it, i.e. along (-sin phi, cos phi). */
+struct Principal2 {
+  double s1, phi;
+};
+inline Principal2 principal_stress_2d(double sx, double sy, double sxy)
+{
+  const double c = 0.5 * (sx + sy), d = 0.5 * (sx - sy);
+  const double r = std::sqrt(d * d + sxy * sxy);
+  return Principal2{c + r, 0.5 * std::atan2(2.0 * sxy, sx - sy)};
+}
+
+/* The half length of a nucleated crack: Irwin's a_c = E' G_c / (pi
+   sigma_t^2), at which a crack of length 2 a_c in a remote stress sigma_t
+   has G = G_c (it is critical when it is born), but no shorter than half the
+   tip model's reach (a tip needs its path behind it to measure K: the
+   sample reach, or the J domain's outer radius, 'reach'); so a crack born at
+   the strength is at least critical, and the seed shrinks with h. */
+inline double nucleation_half_length(double Eprime, double Gc, double sigma_t, double reach)
+{
+  const double ac = Eprime * Gc / (M_PI * sigma_t * sigma_t);
+  return ac > 0.5 * reach ? ac : 0.5 * reach;
+}
+
+/* The distance from point X to the segment A -> B. */
+inline double point_segment_distance(const double *X, const double *A, const double *B)
+{
+  const double sx = B[0] - A[0], sy = B[1] - A[1], ss = sx * sx + sy * sy;
+  double u = ss > 0.0 ? ((X[0] - A[0]) * sx + (X[1] - A[1]) * sy) / ss : 0.0;
+  u = u < 0.0 ? 0.0 : (u > 1.0 ? 1.0 : u);
+  return std::hypot(X[0] - A[0] - u * sx, X[1] - A[1] - u * sy);
+}
+
 /* The speed of a tip whose G reaches G_c: Freund's equation of motion,
    v = c_R (1 - G_c / G), so a tip never runs faster than c_R. */
 inline double freund_speed(double G, double Gc, double cR)

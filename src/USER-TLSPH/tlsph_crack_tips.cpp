@@ -142,7 +142,7 @@ void TLSPHCrackTips::write_restart(FILE *fp, int tipmode)
   fwrite(jr, sizeof(double), 7, fp);
   for (const auto &tp : list) {
     std::vector<double> r = {(double) tp.path.size(), tp.t[0], tp.t[1], tp.seg, tp.own,
-                             (double) tp.alive, (double) tp.growing};
+                             (double) tp.alive, (double) (tp.growing + 2 * tp.newborn)};
     for (const auto &p : tp.path) r.insert(r.end(), {p[0], p[1]});
     fwrite(r.data(), sizeof(double), r.size(), fp);
   }
@@ -196,7 +196,8 @@ int TLSPHCrackTips::read_restart(FILE *fp)
     tp.seg = r[3];
     tp.own = r[4];
     tp.alive = static_cast<int>(r[5]);
-    tp.growing = static_cast<int>(r[6]);
+    tp.growing = static_cast<int>(r[6]) % 2;
+    tp.newborn = static_cast<int>(r[6]) / 2;
     std::vector<double> q(2 * (size_t) np);
     if (comm->me == 0 && np > 0)
       utils::sfread(FLERR, q.data(), sizeof(double), q.size(), fp, nullptr, error);
@@ -207,11 +208,12 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   return tipmode;
 }
 
-void TLSPHCrackTips::init(double Ep, double G_c, double c_R)
+void TLSPHCrackTips::init(double Ep, double G_c, double c_R, double strength)
 {
   Eprime = Ep;
   Gc = G_c;
   cR = c_R;
+  sigma_t = strength;
 }
 
 /* ----------------------------------------------------------------------
@@ -445,12 +447,82 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
    direction is chosen at the start of a segment of length h and kept along
    it. With 'branch A' a tip whose G reaches 2 G_c (the flux that can feed
    two cracks) splits into two at +-A once it has grown 6h on its own. */
+/* after each deformation pass: which atom each local index held, so that
+   stress_now knows whose F the stored F[i] is */
+void TLSPHCrackTips::note_pass()
+{
+  ftag.assign(atom->tag, atom->tag + atom->nlocal);
+}
+
+/* the Cauchy stress of local particle i at the last deformation pass (grow
+   runs before this step's): from the stored F if it is this atom's, else
+   (the atoms were sorted or migrated at a neighbor build since, or it is new
+   on this rank) from its intact bonds and the positions now */
+void TLSPHCrackTips::stress_now(int i, double *sig)
+{
+  if (i < (int) ftag.size() && ftag[i] == atom->tag[i]) {
+    pair->cauchy_stress(i, sig);
+    return;
+  }
+  double Fn[9];
+  const auto xr = TLSPH::StridedRows{atom->x[0], 3};
+  const int nb = pair->nbond[i];
+  if (pair->dim == 2) TLSPH::deformation_gradient_bonds<2>(xr, i, pair->bonds_of<2>(i), nb, Fn);
+  else TLSPH::deformation_gradient_bonds<3>(xr, i, pair->bonds_of<3>(i), nb, Fn);
+  pair->cauchy_stress(i, Fn, sig);
+}
+
+/* merging: the first point, as a fraction of the move P -> Q of tip a,
+   where the move meets a crack: a pre-crack's trace, the path of another tip
+   (alive or not; branches share their parent's path up to the branching
+   point, where a move starting there meets nothing, segment_crossing), or
+   tip a's own path before its last segment; -1 if none. Each path's
+   bounding box is tested first. The same on every rank (the paths and
+   pre-cracks are). */
+double TLSPHCrackTips::first_crossing(int a, const double *P, const double *Q)
+{
+  double best = -1.0;
+  const double blo[2] = {MIN(P[0], Q[0]), MIN(P[1], Q[1])}, bhi[2] = {MAX(P[0], Q[0]), MAX(P[1], Q[1])};
+  auto test = [&](const double *A, const double *B) {
+    if (MAX(A[0], B[0]) < blo[0] || MIN(A[0], B[0]) > bhi[0] || MAX(A[1], B[1]) < blo[1] ||
+        MIN(A[1], B[1]) > bhi[1])
+      return;
+    const double t = TLSPH::segment_crossing(P, Q, A, B);
+    if (t > 0.0 && (best < 0.0 || t < best)) best = t;
+  };
+  for (const auto &c : pair->cracks) {
+    if (pair->dim == 2) {
+      test(&c[0], &c[2]);
+    } else {
+      const bool wz = (c[6] == c[0] && c[7] == c[1]);
+      const double B[2] = {wz ? c[3] : c[6], wz ? c[4] : c[7]};
+      test(&c[0], B);
+    }
+  }
+  for (size_t b = 0; b < list.size(); b++) {
+    const auto &path = list[b].path;
+    // tip a's own last segment ends at P (the move continues it)
+    const size_t nv = (b == (size_t) a) ? path.size() - 1 : path.size();
+    for (size_t v = 1; v < nv; v++) test(path[v - 1].data(), path[v].data());
+  }
+  return best;
+}
+
 void TLSPHCrackTips::grow()
 {
   if (!depth_ready) measure_depth();
   if (!ready) find_tips();
   const int nt = list.size();
   if (!nt) return;
+  // cracks born at the end of the last step (nucleate): their bonds go now
+  // (not in the set-up call of a run, which recomputes the forces of the
+  // step they were born in: a run split in two, or continued from a restart
+  // file, cuts them where one run does)
+  for (auto &tp : list)
+    if (tp.newborn && !update->setupflag) {
+      pair->cut_path(tp.path[0].data(), tp.path[1].data());
+      tp.newborn = 0;
+    }
   constexpr int NK = 4;
   const double rho = p_disc * pair->h;
   double rk[NK];
@@ -650,7 +722,7 @@ void TLSPHCrackTips::grow()
           const double r2 = (X[0] - cx) * (X[0] - cx) + (X[1] - cy) * (X[1] - cy);
           if (r2 >= rh * rh) continue;
           if (!have) {
-            pair->cauchy_stress(i, sig);
+            stress_now(i, sig);
             have = true;
           }
           const double wt = (1.0 - r2 / (rh * rh)) * (1.0 - r2 / (rh * rh));
@@ -767,13 +839,28 @@ void TLSPHCrackTips::grow()
                        update->ntimestep, a, P[0], P[1], Kt[2 * a], Kt[2 * a + 1], G / Gc,
                        v / cR, atan2(t1, t0) * 180.0 / M_PI);
     }
-    const double da = v * dt;
-    const double Pn[2] = {P[0] + da * tp.t[0], P[1] + da * tp.t[1]};
+    double da = v * dt;
+    double Pn[2] = {P[0] + da * tp.t[0], P[1] + da * tp.t[1]};
+    // merging: a tip whose move meets another crack (a pre-crack, another
+    // tip's path, or its own further back) stops where it meets it
+    const double tm = first_crossing(a, P, Pn);
+    if (tm > 0.0) {
+      da *= tm;
+      Pn[0] = P[0] + da * tp.t[0];
+      Pn[1] = P[1] + da * tp.t[1];
+    }
     pair->cut_path(P, Pn);
     tp.path.back() = {Pn[0], Pn[1]};
     tp.seg += da;
     tp.own += da;
     if (tp.seg >= seglen) tp.seg = 0.0;
+    if (tm > 0.0) {
+      tp.alive = 0;
+      if (comm->me == 0)
+        utils::logmesg(lmp, "pair tlsph/damage: step {} tip {} stops at ({:.6g}, {:.6g}), "
+                            "where it meets another crack\n", update->ntimestep, a, Pn[0], Pn[1]);
+      continue;
+    }
     moved.push_back(a);
   }
   // new branches take their first step next time; live list that left the body stop
@@ -799,4 +886,179 @@ void TLSPHCrackTips::grow()
                               "outside the body\n", update->ntimestep, moved[p], pts[p][0], pts[p][1]);
       }
   }
+}
+
+/* Nucleation (pair_coeff strength sigma_t): a crack is born where the
+   kernel-averaged stress's largest principal value reaches the tensile
+   strength, away from the cracks there are. Every step, after the
+   deformation pass (each local particle's F is this step's), not in the
+   set-up call:
+   1. the local particles whose own in-plane principal stress reaches
+      sigma_t and that lie at least L from every crack (a pre-crack, a tip's
+      path) are the candidates (the average over a disc never exceeds the
+      largest value in it, so no other particle can nucleate), all ranks;
+   2. at each candidate's reference position the stress averaged over the
+      particles within h (weights (1 - r^2/h^2)^2, all ranks, through the
+      thickness in 3D), and its principal value s1 and direction;
+   3. in the order of s1 (to 1e-9 sigma_t; ties: the smaller atom ID), a
+      candidate with s1 >= sigma_t nucleates unless it lies within 2 L of a
+      crack born before it this step;
+   4. the crack: a straight cut of length 2 L through it (half a particle
+      spacing beside it: a particle on the line would be on neither face),
+      normal to the principal direction (in the reference configuration; the
+      rotation since is neglected), L = nucleation_half_length (Irwin's a_c,
+      at least half the tip's reach: tlsph_crack.h), with a tip at each end,
+      as a pre-crack's; a tip outside the body (a crack born at a surface)
+      stops at once, so the crack is an edge crack. Its bonds are cut at the
+      start of the next step (grow: this step's forces are those of the
+      bonds its F was made from); the new tips carry that mark, also in a
+      restart file. */
+void TLSPHCrackTips::nucleate()
+{
+  if (!(sigma_t > 0.0) || update->setupflag) return;
+  if (!ready) find_tips();
+  const double h = pair->h;
+  if (!depth_ready) measure_depth();
+  const double reach = std::max(seg > 0.0 ? seg * h : (p_sample + 1.5 + p_disc) * h,
+                                kfit == 2 ? jr2 * h : 0.0);
+  const double L = TLSPH::nucleation_half_length(Eprime, Gc, sigma_t, reach);
+  // the cracks there are: pre-crack traces and the tips' paths
+  std::vector<std::array<double, 4>> segs;
+  for (const auto &c : pair->cracks) {
+    if (pair->dim == 2) {
+      segs.push_back({c[0], c[1], c[2], c[3]});
+    } else {
+      const bool wz = (c[6] == c[0] && c[7] == c[1]);
+      segs.push_back({c[0], c[1], wz ? c[3] : c[6], wz ? c[4] : c[7]});
+    }
+  }
+  for (const auto &tp : list)
+    for (size_t v = 1; v < tp.path.size(); v++)
+      segs.push_back({tp.path[v - 1][0], tp.path[v - 1][1], tp.path[v][0], tp.path[v][1]});
+  auto clear_of_cracks = [&](const double *X) {
+    for (const auto &sg : segs)
+      if (std::fabs(X[0] - 0.5 * (sg[0] + sg[2])) <= L + 0.5 * std::fabs(sg[2] - sg[0]) &&
+          std::fabs(X[1] - 0.5 * (sg[1] + sg[3])) <= L + 0.5 * std::fabs(sg[3] - sg[1]) &&
+          TLSPH::point_segment_distance(X, &sg[0], &sg[2]) < L)
+        return false;
+    return true;
+  };
+  // 1. candidates (atom ID, reference x, y, particle spacing)
+  std::vector<double> mine;
+  double sig[9];
+  for (int i = 0; i < atom->nlocal; i++) {
+    pair->cauchy_stress(i, sig);
+    if (TLSPH::principal_stress_2d(sig[0], sig[4], sig[1]).s1 >= sigma_t && clear_of_cracks(pair->x0c[i]))
+      mine.insert(mine.end(), {(double) atom->tag[i], pair->x0c[i][0], pair->x0c[i][1],
+                               pair->dim == 2 ? sqrt(atom->vfrac[i] / depth) : cbrt(atom->vfrac[i])});
+  }
+  int nm = mine.size(), nprocs = comm->nprocs;
+  std::vector<int> counts(nprocs), displs(nprocs, 0);
+  MPI_Allgather(&nm, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  for (int p = 1; p < nprocs; p++) displs[p] = displs[p - 1] + counts[p - 1];
+  const int ntot = displs[nprocs - 1] + counts[nprocs - 1];
+  if (ntot == 0) return;
+  std::vector<double> all(ntot);
+  MPI_Allgatherv(mine.data(), nm, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
+                 world);
+  const int nc = ntot / 4;
+  std::vector<int> order(nc);
+  for (int c = 0; c < nc; c++) order[c] = c;
+  std::sort(order.begin(), order.end(), [&](int p, int q) { return all[4 * p] < all[4 * q]; });
+  // 2. the averaged stress at each candidate
+  refresh_cells();
+  std::vector<double> part(4 * (size_t) nc, 0.0), sums(4 * (size_t) nc, 0.0);
+  std::vector<int> near;
+  for (int k = 0; k < nc; k++) {
+    const double *C = &all[4 * order[k] + 1];
+    const double lo[2] = {C[0] - h, C[1] - h}, hi[2] = {C[0] + h, C[1] + h};
+    particles_in_box(lo, hi, near);
+    for (int i : near) {
+      const double dx = pair->x0c[i][0] - C[0], dy = pair->x0c[i][1] - C[1];
+      const double r2 = dx * dx + dy * dy;
+      if (r2 >= h * h) continue;
+      const double w = (1.0 - r2 / (h * h)) * (1.0 - r2 / (h * h));
+      pair->cauchy_stress(i, sig);
+      double *S = &part[4 * (size_t) k];
+      S[0] += w;
+      S[1] += w * sig[0];
+      S[2] += w * sig[4];
+      S[3] += w * sig[1];
+    }
+  }
+  MPI_Allreduce(part.data(), sums.data(), 4 * nc, MPI_DOUBLE, MPI_SUM, world);
+  std::vector<TLSPH::Principal2> pr(nc, TLSPH::Principal2{-1.0e300, 0.0});
+  std::vector<int> rank;
+  for (int k = 0; k < nc; k++) {
+    const double *S = &sums[4 * (size_t) k];
+    if (!(S[0] > 0.0)) continue;
+    pr[k] = TLSPH::principal_stress_2d(S[1] / S[0], S[2] / S[0], S[3] / S[0]);
+    if (pr[k].s1 >= sigma_t) rank.push_back(k);
+  }
+  if (rank.empty()) return;
+  // s1 to 1e-9 sigma_t, so that round-off (the ranks sum in another order)
+  // does not reorder equal stresses (a uniform field): those go by atom ID
+  std::vector<long long> key(nc, 0);
+  for (int k : rank) key[k] = std::llround(pr[k].s1 / (1.0e-9 * sigma_t));
+  std::stable_sort(rank.begin(), rank.end(), [&](int p, int q) { return key[p] > key[q]; });
+  // 3. away from each other
+  std::vector<int> born;
+  for (int k : rank) {
+    const double *C = &all[4 * order[k] + 1];
+    bool clear = true;
+    for (int b : born)
+      if (std::hypot(C[0] - all[4 * order[b] + 1], C[1] - all[4 * order[b] + 2]) < 2.0 * L) clear = false;
+    if (clear) born.push_back(k);
+    if (comm->me == 0 && getenv("TLSPH_TIP_TRACE"))
+      utils::logmesg(lmp, "nucleation-trace {} atom {} s1 {:.10g} at ({:.6g}, {:.6g}){}\n", update->ntimestep,
+                     (tagint) all[4 * order[k]], pr[k].s1, C[0], C[1], clear ? " nucleates" : "");
+  }
+  // 4. the new cracks, each with its two tips
+  const size_t first = list.size();
+  std::vector<std::array<double, 2>> ends;
+  for (size_t n = 0; n < born.size(); n++) {
+    const int k = born[n];
+    const double *C = &all[4 * order[k] + 1];
+    // the cut passes half a particle spacing beside the particle, along the
+    // principal direction n (oriented n_x > 0, or n_y > 0 when n_x is nil to
+    // round-off), so that no particle lies on it (a particle on a crack's line
+    // would be on neither face) and on a lattice it runs midway between two
+    // rows, as the decks' pre-cracks do
+    double nx = cos(pr[k].phi), ny = sin(pr[k].phi);
+    if (nx < -1.0e-9 || (std::fabs(nx) <= 1.0e-9 && ny < 0.0)) nx = -nx, ny = -ny;
+    const double tx = -ny, ty = nx, off = 0.5 * C[2];
+    const double M[2] = {C[0] + off * nx, C[1] + off * ny};
+    const double A[2] = {M[0] - L * tx, M[1] - L * ty}, B[2] = {M[0] + L * tx, M[1] + L * ty};
+    for (int sgn = 1; sgn >= -1; sgn -= 2) {
+      CrackTip tp;
+      tp.path = sgn > 0 ? std::vector<std::array<double, 2>>{{A[0], A[1]}, {B[0], B[1]}}
+                        : std::vector<std::array<double, 2>>{{B[0], B[1]}, {A[0], A[1]}};
+      tp.t[0] = sgn * tx;
+      tp.t[1] = sgn * ty;
+      tp.seg = tp.own = 0.0;
+      tp.alive = 1;
+      tp.growing = 0;
+      tp.newborn = 1;
+      list.push_back(tp);
+      ends.push_back(tp.path.back());
+    }
+    if (comm->me == 0)
+      utils::logmesg(lmp, "pair tlsph/damage: step {} t {:.6g}: a crack nucleates at ({:.6g}, {:.6g}) "
+                          "(atom {}), principal stress {:.4g} >= strength {:.4g}, direction ({:.4f}, "
+                          "{:.4f}), length {:.4g}: tips {} and {}\n", update->ntimestep,
+                     update->atime + (update->ntimestep - update->atimestep) * update->dt, C[0], C[1],
+                     (tagint) all[4 * order[k]], pr[k].s1, sigma_t, tx, ty, 2.0 * L,
+                     first + 2 * n, first + 2 * n + 1);
+  }
+  if (ends.empty()) return;
+  std::vector<double> vol;
+  volume_near(ends, h, vol);
+  for (size_t e = 0; e < ends.size(); e++)
+    if (vol[e] < 0.4 * M_PI * h * h * depth) {
+      list[first + e].alive = 0;
+      if (comm->me == 0)
+        utils::logmesg(lmp, "pair tlsph/damage: step {} tip {} at ({:.6g}, {:.6g}) lies outside the "
+                            "body (an edge crack): it stops\n", update->ntimestep, first + e,
+                       ends[e][0], ends[e][1]);
+    }
 }

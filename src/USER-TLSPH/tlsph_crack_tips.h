@@ -16,6 +16,7 @@
 #ifndef LMP_TLSPH_CRACK_TIPS_H
 #define LMP_TLSPH_CRACK_TIPS_H
 
+#include "lmptype.h"
 #include "pointers.h"
 
 #include <array>
@@ -33,6 +34,7 @@ struct CrackTip {
   double seg;                                 // length grown on the current segment
   double own;                                 // length grown since the tip was born
   int alive, growing;
+  int newborn = 0;    // nucleated at the end of the last step: its bonds are cut at the next grow
   // at the last force evaluation (not in restart files: measured every step)
   double KI = 0.0, KII = 0.0;    // stress intensity factors
   double G = 0.0;                // energy release rate of the kink direction
@@ -51,11 +53,17 @@ class TLSPHCrackTips : protected Pointers {
   // restart: the settings (and the pair's tipmode) and every tip with its path
   void write_restart(FILE *fp, int tipmode);
   int read_restart(FILE *fp);    // returns tipmode
-  // from the pair's init_style: the material's E', G_c and Rayleigh speed
-  void init(double Eprime, double Gc, double cR);
+  // from the pair's init_style: the material's E', G_c, Rayleigh speed and
+  // tensile strength (0: no nucleation)
+  void init(double Eprime, double Gc, double cR, double strength);
   // every step before the deformation pass: the tips found (first call),
   // measured, turned, grown and split
   void grow();
+  // every step after the deformation pass (pair_coeff strength): new cracks
+  // where the stress reaches the strength (their bonds are cut by the next grow)
+  void nucleate();
+  // after each deformation pass: the atom of each local index (stress_now)
+  void note_pass();
 
   const std::vector<CrackTip> &tips() const { return list; }
   double fracture_energy() const { return Gc; }
@@ -83,6 +91,7 @@ class TLSPHCrackTips : protected Pointers {
   std::vector<CrackTip> list;
   int ready, depth_ready;
   double Eprime, Gc, cR, depth;
+  double sigma_t = 0.0;    // tensile strength: cracks nucleate where the stress reaches it (0: never)
   void measure_depth();
 
   // the local particles in square cells of their reference positions (xy),
@@ -97,6 +106,9 @@ class TLSPHCrackTips : protected Pointers {
   void refresh_cells();
   void volume_near(const std::vector<std::array<double, 2>> &pts, double R, std::vector<double> &vol);
 
+  double first_crossing(int a, const double *P, const double *Q);
+  void stress_now(int i, double *sig);
+  std::vector<tagint> ftag;    // atom ID of each local index at the last deformation pass
   void j_integrals(const std::vector<int> &live, const std::vector<double> &dir, std::vector<double> &J);
 
   void find_tips();

@@ -344,3 +344,75 @@ TEST(CrackTip, YoffeBranchesFindTheTwoMaxima)
   for (int k = 0; k < n; k++) f[k] = hoop(1.0, 0.0, u[k]), ok[k] = 1;
   EXPECT_EQ(TLSPH::yoffe_branches(n, u, f, ok, 65).split, 0);
 }
+
+// merging: where a tip's move first meets a piece of another crack
+TEST(CrackTip, SegmentCrossingFindsWhereAMoveMeetsACrack)
+{
+  using TLSPH::segment_crossing;
+  const double P[2] = {0.0, 0.0}, Q[2] = {2.0, 0.0};
+  // across the move at x = 0.5: t = 0.25
+  const double A[2] = {0.5, -1.0}, B[2] = {0.5, 1.0};
+  EXPECT_NEAR(segment_crossing(P, Q, A, B), 0.25, 1e-15);
+  EXPECT_NEAR(segment_crossing(P, Q, B, A), 0.25, 1e-15);
+  // the segment ends short of the move's line, or lies beyond its end
+  const double C[2] = {0.5, 0.1}, D[2] = {3.0, -1.0}, E[2] = {3.0, 1.0};
+  EXPECT_LT(segment_crossing(P, Q, C, B), 0.0);
+  EXPECT_LT(segment_crossing(P, Q, D, E), 0.0);
+  // touching at its end point counts (a T junction), at the move's end too
+  const double F[2] = {1.0, 0.0}, G[2] = {2.0, -1.0}, H2[2] = {2.0, 1.0};
+  EXPECT_NEAR(segment_crossing(P, Q, F, B), 0.5, 1e-15);
+  EXPECT_NEAR(segment_crossing(P, Q, G, H2), 1.0, 1e-15);
+  // through the move's start (the path it grows from, a sibling branch): no
+  const double S0[2] = {-1.0, -1.0}, S1[2] = {-1.0, 1.0};
+  EXPECT_LT(segment_crossing(P, Q, S0, P), 0.0);
+  EXPECT_LT(segment_crossing(P, Q, P, S1), 0.0);
+  EXPECT_LT(segment_crossing(P, Q, S0, S1), 0.0);
+  // collinear: behind the start (its own path) no; ahead (a tip running
+  // head-on at another crack's end) where the segment begins
+  const double K0[2] = {-3.0, 0.0}, K1[2] = {1.5, 0.0}, K2[2] = {5.0, 0.0};
+  EXPECT_LT(segment_crossing(P, Q, K0, P), 0.0);
+  EXPECT_NEAR(segment_crossing(P, Q, K2, K1), 0.75, 1e-15);
+  EXPECT_LT(segment_crossing(P, Q, K0, K1), 0.0);    // the tip already lies on it
+  // parallel, off the line: no; a zero-length move: no
+  const double L0[2] = {0.0, 1e-3}, L1[2] = {2.0, 1e-3};
+  EXPECT_LT(segment_crossing(P, Q, L0, L1), 0.0);
+  EXPECT_LT(segment_crossing(P, P, A, B), 0.0);
+  // an oblique move and segment, against the intersection written out
+  const double P2[2] = {0.1, 0.2}, Q2[2] = {1.3, 0.9}, A2[2] = {1.0, 0.0}, B2[2] = {0.2, 1.6};
+  const double t = segment_crossing(P2, Q2, A2, B2);
+  ASSERT_GT(t, 0.0);
+  const double X = P2[0] + t * (Q2[0] - P2[0]), Y = P2[1] + t * (Q2[1] - P2[1]);
+  // on A2 -> B2: (X - 1) / (0.2 - 1) == Y / 1.6
+  EXPECT_NEAR((X - 1.0) / -0.8, Y / 1.6, 1e-14);
+}
+
+// nucleation: the principal stress and its direction, the seed's length
+TEST(CrackTip, PrincipalStressAndNucleationLength)
+{
+  // a uniaxial stress s along phi0, rotated into x, y: s1 = s, phi = phi0
+  for (double phi0 : {0.0, 0.3, -0.7, 1.2, PI / 2}) {
+    const double s = 5.0, c = std::cos(phi0), sn = std::sin(phi0);
+    const TLSPH::Principal2 p = TLSPH::principal_stress_2d(s * c * c, s * sn * sn, s * c * sn);
+    EXPECT_NEAR(p.s1, s, 1e-13);
+    // the same direction up to a half turn
+    EXPECT_NEAR(std::sin(p.phi - phi0), 0.0, 1e-13);
+    // a crack along (-sin phi, cos phi), the ray at phi + pi/2, carries s
+    // across it (the hoop stress there is the stress along phi)
+    EXPECT_NEAR(TLSPH::hoop_stress(s * c * c, s * sn * sn, s * c * sn, p.phi + PI / 2), s, 1e-12);
+  }
+  // biaxial and shear: s1 = centre + radius of Mohr's circle
+  const TLSPH::Principal2 q = TLSPH::principal_stress_2d(1.0, -3.0, 2.0);
+  EXPECT_NEAR(q.s1, -1.0 + std::sqrt(8.0), 1e-14);
+  // a crack of half length a_c in a remote stress sigma_t has G = G_c:
+  // pi sigma_t^2 a / E' (Griffith)
+  const double Ep = 70e9, Gc = 10.0, st = 5e6, ac = Ep * Gc / (PI * st * st);
+  EXPECT_NEAR(TLSPH::nucleation_half_length(Ep, Gc, st, 1e-6), ac, 1e-12 * ac);
+  EXPECT_NEAR(PI * st * st * ac / Ep, Gc, 1e-12 * Gc);
+  EXPECT_DOUBLE_EQ(TLSPH::nucleation_half_length(Ep, Gc, st, 4.0 * ac), 2.0 * ac);
+  // the distance to a segment: beside it, beyond its ends
+  const double A[2] = {0.0, 0.0}, B[2] = {2.0, 0.0}, X1[2] = {1.0, 0.5}, X2[2] = {3.0, 1.0},
+               X3[2] = {-1.0, 0.0};
+  EXPECT_DOUBLE_EQ(TLSPH::point_segment_distance(X1, A, B), 0.5);
+  EXPECT_DOUBLE_EQ(TLSPH::point_segment_distance(X2, A, B), std::sqrt(2.0));
+  EXPECT_DOUBLE_EQ(TLSPH::point_segment_distance(X3, A, B), 1.0);
+}

@@ -131,6 +131,9 @@ def main():
     ap.add_argument("--kfit", default="tip",
                     help="with --crit tip: pair_style tlsph/damage kfit (tip, offset or j)")
     ap.add_argument("--gc", type=float, default=3.0, help="the glass's fracture energy [J/m^2]")
+    ap.add_argument("--strength", type=float, default=0.0,
+                    help="with --crit tip: pair_coeff strength [Pa] (crack nucleation; 0: none)")
+    ap.add_argument("--no-precrack", action="store_true", help="no pre-crack (with --strength)")
     args = ap.parse_args()
     args.srcdir = os.path.abspath(args.srcdir)
     args.lmp = os.path.abspath(args.lmp)
@@ -141,6 +144,10 @@ def main():
 
     fam = ["-var", "family", repr(args.family)] if args.family > 0 else []
     fam += ["-var", "crit", args.crit, "-var", "kfit", args.kfit, "-var", "gc", repr(args.gc)]
+    if args.strength > 0:
+        fam += ["-var", "strength", repr(args.strength)]
+    if args.no_precrack:
+        fam += ["-var", "pc", "no"]
     problems, results = [], []
     for np in args.np:
         tag = "np%d" % np
