@@ -1480,6 +1480,86 @@ void PairTLSPH::cauchy_stress(int i, const double *Fin, double *sigma) const
   else cauchy(IsotropicSVK{m.lambda, m.mu, dim == 2 ? plane_stress : 0});
 }
 
+/* the in-plane Cauchy stress (xx, yy, xy) from the stored F: in 2D with an
+   isotropic law the 2 x 2 products only (crack nucleation screens every
+   particle every step with it), else from cauchy_stress */
+void PairTLSPH::cauchy_stress_xy(int i, double *s) const
+{
+  const Material &m = mat[atom->type[i]];
+  if (dim != 2 || m.orthotropic) {
+    double sig[9];
+    cauchy_stress(i, sig);
+    s[0] = sig[0], s[1] = sig[4], s[2] = sig[1];
+    return;
+  }
+  const double *Fi = F[i];
+  const double f00 = Fi[0], f01 = Fi[1], f10 = Fi[3], f11 = Fi[4];
+  double E[9] = {0.5 * (f00 * f00 + f10 * f10 - 1.0), 0.5 * (f00 * f01 + f10 * f11), 0.0,
+                 0.5 * (f00 * f01 + f10 * f11), 0.5 * (f01 * f01 + f11 * f11 - 1.0), 0.0,
+                 0.0, 0.0, 0.0};
+  double S[9];
+  IsotropicSVK{m.lambda, m.mu, plane_stress}.stress(E, S);
+  const double J = (f00 * f11 - f01 * f10) * (plane_stress ? sqrt(1.0 + 2.0 * E[8]) : 1.0);
+  const double a00 = f00 * S[0] + f01 * S[3], a01 = f00 * S[1] + f01 * S[4];
+  const double a10 = f10 * S[0] + f11 * S[3], a11 = f10 * S[1] + f11 * S[4];
+  s[0] = (a00 * f00 + a01 * f01) / J;
+  s[1] = (a10 * f10 + a11 * f11) / J;
+  s[2] = (a00 * f10 + a01 * f11) / J;
+}
+
+/* the local particles whose in-plane largest principal Cauchy stress (from
+   the stored F) reaches s_min, ascending: in 2D with one isotropic law for
+   all types a loop the compiler vectorises, comparing J s1 with J s_min (no
+   division), else cauchy_stress_xy particle by particle */
+void PairTLSPH::principal_screen_xy(double s_min, std::vector<int> &out) const
+{
+  out.clear();
+  const int nlocal = atom->nlocal;
+  if (nlocal == 0) return;
+  bool one_law = (dim == 2);
+  const Material &m0 = mat[atom->type[0]];
+  for (int t = 1; t <= atom->ntypes && one_law; t++)
+    if (mat[t].rho > 0.0 && (mat[t].orthotropic || mat[t].lambda != m0.lambda || mat[t].mu != m0.mu))
+      one_law = false;
+  if (!one_law || m0.orthotropic) {
+    double s[3];
+    for (int i = 0; i < nlocal; i++) {
+      cauchy_stress_xy(i, s);
+      const double d = 0.5 * (s[0] - s[1]);
+      if (0.5 * (s[0] + s[1]) + sqrt(d * d + s[2] * s[2]) >= s_min) out.push_back(i);
+    }
+    return;
+  }
+  const double lam = m0.lambda, mu = m0.mu;
+  const double *Fp = F[0];
+  std::vector<unsigned char> hit(nlocal);
+  // s1 >= s_min  <=>  sqrt(d^2 + xy^2) >= J s_min - c (c, d, xy of J sigma):
+  // true when the right side is <= 0, else compared squared (no sqrt)
+  auto screen = [&](auto ps) {
+    constexpr bool PS = decltype(ps)::value;
+    for (int i = 0; i < nlocal; i++) {
+      const double *Fi = Fp + 9 * (bigint) i;
+      const double f00 = Fi[0], f01 = Fi[1], f10 = Fi[3], f11 = Fi[4];
+      const double e00 = 0.5 * (f00 * f00 + f10 * f10 - 1.0), e11 = 0.5 * (f01 * f01 + f11 * f11 - 1.0);
+      const double e01 = 0.5 * (f00 * f01 + f10 * f11);
+      // IsotropicSVK: plane stress E33 = -lambda (E11 + E22) / (lambda + 2 mu)
+      const double e22 = PS ? -lam * (e00 + e11) / (lam + 2.0 * mu) : 0.0;
+      const double tr = e00 + e11 + e22;
+      const double s00 = 2.0 * mu * e00 + lam * tr, s11 = 2.0 * mu * e11 + lam * tr, s01 = 2.0 * mu * e01;
+      const double a00 = f00 * s00 + f01 * s01, a01 = f00 * s01 + f01 * s11;
+      const double a10 = f10 * s00 + f11 * s01, a11 = f10 * s01 + f11 * s11;
+      const double xx = a00 * f00 + a01 * f01, yy = a10 * f10 + a11 * f11, xy = a00 * f10 + a01 * f11;
+      const double J = (f00 * f11 - f01 * f10) * (PS ? sqrt(1.0 + 2.0 * e22) : 1.0);
+      const double d = 0.5 * (xx - yy), rhs = s_min * J - 0.5 * (xx + yy);
+      hit[i] = (rhs <= 0.0 || d * d + xy * xy >= rhs * rhs) ? 1 : 0;
+    }
+  };
+  if (plane_stress) screen(std::true_type{});
+  else screen(std::false_type{});
+  for (int i = 0; i < nlocal; i++)
+    if (hit[i]) out.push_back(i);
+}
+
 double PairTLSPH::pk1_stress(int i, double *Fi, double *Pi) const
 {
   const Material &m = mat[atom->type[i]];

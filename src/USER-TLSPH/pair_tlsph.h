@@ -69,6 +69,10 @@ class PairTLSPH : public Pair {
   void cauchy_stress(int i, double *sigma) const;
   // the same from a given F (3 x 3) instead of the stored one
   void cauchy_stress(int i, const double *Fi, double *sigma) const;
+  // its in-plane part xx, yy, xy (stored F; cheaper in 2D)
+  void cauchy_stress_xy(int i, double *s) const;
+  // the local particles whose largest in-plane principal stress is >= s_min
+  void principal_screen_xy(double s_min, std::vector<int> &out) const;
   void green_lagrange_strain(int i, double *E) const;
   const double *deformation_gradient(int i) const { return F[i]; }
   // the first Piola-Kirchhoff stress P of particle i's law at the deformation

@@ -945,10 +945,11 @@ void TLSPHCrackTips::nucleate()
   };
   // 1. candidates (atom ID, reference x, y, particle spacing)
   std::vector<double> mine;
-  double sig[9];
-  for (int i = 0; i < atom->nlocal; i++) {
-    pair->cauchy_stress(i, sig);
-    if (TLSPH::principal_stress_2d(sig[0], sig[4], sig[1]).s1 >= sigma_t && clear_of_cracks(pair->x0c[i]))
+  double sig[3];
+  std::vector<int> over;
+  pair->principal_screen_xy(sigma_t, over);
+  for (int i : over) {
+    if (clear_of_cracks(pair->x0c[i]))
       mine.insert(mine.end(), {(double) atom->tag[i], pair->x0c[i][0], pair->x0c[i][1],
                                pair->dim == 2 ? sqrt(atom->vfrac[i] / depth) : cbrt(atom->vfrac[i])});
   }
@@ -978,12 +979,12 @@ void TLSPHCrackTips::nucleate()
       const double r2 = dx * dx + dy * dy;
       if (r2 >= h * h) continue;
       const double w = (1.0 - r2 / (h * h)) * (1.0 - r2 / (h * h));
-      pair->cauchy_stress(i, sig);
+      pair->cauchy_stress_xy(i, sig);
       double *S = &part[4 * (size_t) k];
       S[0] += w;
       S[1] += w * sig[0];
-      S[2] += w * sig[4];
-      S[3] += w * sig[1];
+      S[2] += w * sig[1];
+      S[3] += w * sig[2];
     }
   }
   MPI_Allreduce(part.data(), sums.data(), 4 * nc, MPI_DOUBLE, MPI_SUM, world);
