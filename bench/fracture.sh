@@ -58,6 +58,8 @@
 #   tipc-NAME-VALUE  tip-yoffe with one constant of the tip model set to
 #              VALUE (NAME: seg = tipseg, or sample, disc, hoopr, window,
 #              split = pair_style tlsph/damage tipparam NAME); bench/tipconst.sh
+#   tipjc-NAME-VALUE  the same for tip-yoffe-j (the recommended model,
+#              kfit j); bench/tipconst.sh with KFIT=j
 #   tip-nobranch  the same without branching
 #   tip-thesis    tip with each deck's own (thesis) coefficients
 #   tip-hoop   tip-nobranch with the direction of the largest hoop stress
@@ -123,6 +125,14 @@ vars_of() {    # setting [kalthoff|branching]
         *) echo "bench/fracture.sh: unknown tip constant '$nm' in '$1' (seg sample disc hoopr window split)" >&2; return 1 ;;
       esac ;;
     tip-yoffe-j) echo "-var crit tip -var branch yoffe -var kfit j -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    tipjc-*)    # tipjc-NAME-VALUE: tip-yoffe-j with one constant of the tip model changed
+      local nm val
+      IFS=- read -r _ nm val <<< "$1"
+      case "$nm" in
+        seg) echo "-var crit tip -var branch yoffe -var kfit j -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1 -var tipseg $val" ;;
+        sample|disc|hoopr|window|split) echo "-var crit tip -var branch yoffe -var kfit j -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1 -var t$nm $val" ;;
+        *) echo "bench/fracture.sh: unknown tip constant '$nm' in '$1' (seg sample disc hoopr window split)" >&2; return 1 ;;
+      esac ;;
     tip-nobranch) echo "-var crit tip -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-thesis) echo "-var crit tip -var branch 15" ;;
     tip-hoop) echo "-var crit tip -var tipdir hoop -var tipseg 1 -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
@@ -133,7 +143,7 @@ vars_of() {    # setting [kalthoff|branching]
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }
