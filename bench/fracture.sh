@@ -116,23 +116,16 @@ vars_of() {    # setting [kalthoff|branching]
     tip) echo "-var crit tip -var branch 15 -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-yoffe) echo "-var crit tip -var branch yoffe -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-yoffe-offset) echo "-var crit tip -var branch yoffe -var kfit offset -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
-    tipc-*)    # tipc-NAME-VALUE: tip-yoffe with one constant of the tip model changed
-      local nm val
-      IFS=- read -r _ nm val <<< "$1"
+    tipc-*|tipjc-*)    # tipc-NAME-VALUE, tipjc-NAME-VALUE: tip-yoffe, tip-yoffe-j with one constant changed
+      local pre nm val kf=""
+      IFS=- read -r pre nm val <<< "$1"
+      [ "$pre" = tipjc ] && kf="-var kfit j "
       case "$nm" in
-        seg) echo "-var crit tip -var branch yoffe -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1 -var tipseg $val" ;;
-        sample|disc|hoopr|window|split) echo "-var crit tip -var branch yoffe -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1 -var t$nm $val" ;;
+        seg) echo "-var crit tip -var branch yoffe ${kf}-var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1 -var tipseg $val" ;;
+        sample|disc|hoopr|window|split) echo "-var crit tip -var branch yoffe ${kf}-var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1 -var t$nm $val" ;;
         *) echo "bench/fracture.sh: unknown tip constant '$nm' in '$1' (seg sample disc hoopr window split)" >&2; return 1 ;;
       esac ;;
     tip-yoffe-j) echo "-var crit tip -var branch yoffe -var kfit j -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
-    tipjc-*)    # tipjc-NAME-VALUE: tip-yoffe-j with one constant of the tip model changed
-      local nm val
-      IFS=- read -r _ nm val <<< "$1"
-      case "$nm" in
-        seg) echo "-var crit tip -var branch yoffe -var kfit j -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1 -var tipseg $val" ;;
-        sample|disc|hoopr|window|split) echo "-var crit tip -var branch yoffe -var kfit j -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1 -var t$nm $val" ;;
-        *) echo "bench/fracture.sh: unknown tip constant '$nm' in '$1' (seg sample disc hoopr window split)" >&2; return 1 ;;
-      esac ;;
     tip-nobranch) echo "-var crit tip -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-thesis) echo "-var crit tip -var branch 15" ;;
     tip-hoop) echo "-var crit tip -var tipdir hoop -var tipseg 1 -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;

@@ -90,21 +90,33 @@ def run(a, deck, tag, args):
     return log if run_lammps(cmd, cwd=a.workdir) else None
 
 
+class LammpsFailed(Exception):
+    pass
+
+
+def first_cracks(a, deck, tag, args, checks):
+    """Run a deck; its nucleations, the tips that stopped and the cracks of
+    the first step that nucleated (empty, with a failed check, if none)."""
+    log = run(a, deck, tag, args)
+    if log is None:
+        raise LammpsFailed(tag)
+    nuc, stops = nucleations(log)
+    if not nuc:
+        checks.append((f"{tag}: a crack nucleates", False))
+        return log, nuc, stops, []
+    return log, nuc, stops, [n for n in nuc if n["step"] == nuc[0]["step"]]
+
+
 def hole(a):
     deck = os.path.join(a.root, "examples", "nucleation", "in.hole-plate")
     W, R, load = 0.08, 0.01, 10e6
     ta = (W / 2 - R) / CL
     checks, off = [], {}
     for dx in (0.001, 0.0005):
-        log = run(a, deck, f"hole-{dx}", ["-var", "dx", str(dx), "-var", "st", "40e6", "-var", "out",
-                                          f"hole-{dx}"])
-        if log is None:
-            return 1
-        nuc, stops = nucleations(log)
-        if not nuc:
-            checks.append((f"dx {dx}: a crack nucleates", False))
+        _, nuc, stops, first = first_cracks(a, deck, f"hole-{dx}", ["-var", "dx", str(dx), "-var", "st", "40e6",
+                                                                  "-var", "out", f"hole-{dx}"], checks)
+        if not first:
             continue
-        first = [n for n in nuc if n["step"] == nuc[0]["step"]]
         t1 = first[0]["t"]
         print(f"dx {dx}: {len(nuc)} nucleations, the first at t = {t1 * 1e6:.2f} us (t_a {ta * 1e6:.2f} us): " +
               ", ".join(f"({n['x'] * 1e3:.2f}, {n['y'] * 1e3:.2f}) mm dir ({n['tx']:.3f}, {n['ty']:.3f})"
@@ -161,15 +173,11 @@ def plate(a):
     checks.append((f"sigma_t = 3 sigma0: nothing nucleates in 40 us ({len(nuc)} cracks)", not nuc))
     delay = {}
     for dx in (0.001, 0.0005):
-        log = run(a, deck, f"plate-{dx}", common + ["-var", "dx", str(dx), "-var", "strength", str(1.5 * s0),
-                                                    "-var", "tend", "12e-6", "-var", "out", f"plate-{dx}"])
-        if log is None:
-            return 1
-        nuc, _ = nucleations(log)
-        if not nuc:
-            checks.append((f"dx {dx}: a crack nucleates", False))
+        _, _, _, first = first_cracks(a, deck, f"plate-{dx}", common + [
+            "-var", "dx", str(dx), "-var", "strength", str(1.5 * s0), "-var", "tend", "12e-6", "-var", "out",
+            f"plate-{dx}"], checks)
+        if not first:
             continue
-        first = [n for n in nuc if n["step"] == nuc[0]["step"]]
         tm = (Ly / 2 - dx) / CL
         delay[dx] = first[0]["t"] - tm
         print(f"dx {dx}: the first cracks at t = {first[0]['t'] * 1e6:.3f} us (t_m {tm * 1e6:.3f} us): " +
@@ -192,15 +200,11 @@ def beam(a):
     H, st = 0.015, 40e6
     checks, excess = [], {}
     for dx in (0.001, 0.0005):
-        log = run(a, deck, f"beam-{dx}", ["-var", "dx", str(dx), "-var", "out", f"beam-{dx}"])
-        if log is None:
-            return 1
-        nuc, stops = nucleations(log)
-        if not nuc:
-            checks.append((f"dx {dx}: a crack nucleates", False))
+        log, nuc, stops, first = first_cracks(a, deck, f"beam-{dx}", ["-var", "dx", str(dx), "-var", "out",
+                                                                     f"beam-{dx}"], checks)
+        if not first:
             continue
-        n = nuc[0]
-        first = [m for m in nuc if m["step"] == n["step"]]
+        n = first[0]
         # the thermo rows: step time w sigma_beam
         rows = []
         for l in open(log):
@@ -241,7 +245,10 @@ def main():
     ap.add_argument("--case", required=True, choices=["hole", "plate", "beam"])
     a = ap.parse_args()
     os.makedirs(a.workdir, exist_ok=True)
-    return {"hole": hole, "plate": plate, "beam": beam}[a.case](a)
+    try:
+        return {"hole": hole, "plate": plate, "beam": beam}[a.case](a)
+    except LammpsFailed:
+        return 1
 
 
 if __name__ == "__main__":
