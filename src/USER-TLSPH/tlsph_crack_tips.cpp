@@ -438,15 +438,6 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
   for (double &j : J) j /= depth;
 }
 
-/* Each step, for every live tip: the stress intensity factors from the
-   displacement jump across the faces behind it (displacement correlation:
-   du = 8 K sqrt(r / 2 pi) / E', sampled at r = 2h .. 5h along its path and
-   extrapolated to r = 0), the maximum tangential stress direction and
-   equivalent K (Erdogan & Sih), and, once G = K_eq^2 / E' reaches G_c, an
-   advance at v = c_R (1 - G_c / G) (Freund's equation of motion). The
-   direction is chosen at the start of a segment of length h and kept along
-   it. With 'branch A' a tip whose G reaches 2 G_c (the flux that can feed
-   two cracks) splits into two at +-A once it has grown 6h on its own. */
 /* after each deformation pass: which atom each local index held, so that
    stress_now knows whose F the stored F[i] is */
 void TLSPHCrackTips::note_pass()
@@ -508,6 +499,18 @@ double TLSPHCrackTips::first_crossing(int a, const double *P, const double *Q)
   return best;
 }
 
+/* Each step, before the deformation pass: first the bonds of the cracks
+   nucleated at the end of the last step are cut; then, for every live tip,
+   the stress intensity factors from the displacement jump across the faces
+   behind it (displacement correlation, samples at r = sample .. sample +
+   1.5 h along its path, extrapolated to r = 0; kfit j: their size from the
+   domain J-integral), the kink angle and equivalent K of the maximum
+   tangential stress rule (Erdogan & Sih), and, once G = K_eq^2 / E' reaches
+   G_c, an advance at v = c_R (1 - G_c / G) (Freund's equation of motion)
+   that stops where it meets another crack (merging) or leaves the body. The
+   direction is chosen at the start of a segment (tipseg, default the K
+   samples' reach, 4.5 h) and kept along it; 'branch yoffe' (or 'branch A')
+   splits a tip with G >= 2 G_c once it has grown p_split segments. */
 void TLSPHCrackTips::grow()
 {
   if (!depth_ready) measure_depth();
