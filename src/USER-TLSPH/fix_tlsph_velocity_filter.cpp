@@ -13,6 +13,8 @@
 #include "pair_tlsph_damage.h"
 #include "update.h"
 
+#include <cstring>
+
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
@@ -34,6 +36,11 @@ FixTLSPHVelocityFilter::FixTLSPHVelocityFilter(LAMMPS *lmp, int narg, char **arg
   scalar_flag = 1;
   global_freq = 1;
   extscalar = 0;
+  // the kinetic energy taken out: in the last step, and in all (extensive)
+  vector_flag = 1;
+  size_vector = 2;
+  extvector = 1;
+  restart_global = 1;
 }
 
 FixTLSPHVelocityFilter::~FixTLSPHVelocityFilter() = default;
@@ -78,9 +85,25 @@ void FixTLSPHVelocityFilter::end_of_step()
     fidx.push_back(i);
     for (int d = 0; d < 3; d++) fvel.push_back(wsum > 0.0 ? v[i][d] - eps * s[d] / wsum : v[i][d]);
   }
-  for (size_t k = 0; k < fidx.size(); k++)
-    for (int d = 0; d < 3; d++) v[fidx[k]][d] = fvel[3 * k + d];
+  const double *rmass = atom->rmass;
+  double de = 0.0;
+  for (size_t k = 0; k < fidx.size(); k++) {
+    const int i = fidx[k];
+    double v2 = 0.0;
+    for (int d = 0; d < 3; d++) {
+      v2 += v[i][d] * v[i][d] - fvel[3 * k + d] * fvel[3 * k + d];
+      v[i][d] = fvel[3 * k + d];
+    }
+    de += 0.5 * (rmass ? rmass[i] : atom->mass[atom->type[i]]) * v2;
+  }
   nfiltered = fidx.size();
+  record_energy(de);
+}
+
+void FixTLSPHVelocityFilter::record_energy(double de)
+{
+  de_step = de;
+  de_sum += de;
 }
 
 int FixTLSPHVelocityFilter::pack_forward_comm(int n, int *list, double *buf, int, int *)
@@ -104,6 +127,34 @@ void FixTLSPHVelocityFilter::unpack_forward_comm(int n, int first, double *buf)
     v[i][1] = buf[m++];
     v[i][2] = buf[m++];
   }
+}
+
+// the kinetic energy taken out (sum over the ranks): 1 in the last step,
+// 2 since the fix was defined (restart files carry it)
+double FixTLSPHVelocityFilter::compute_vector(int n)
+{
+  double mine = n == 0 ? de_step : de_sum, all;
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+  return all;
+}
+
+void FixTLSPHVelocityFilter::write_restart(FILE *fp)
+{
+  double all;
+  MPI_Allreduce(&de_sum, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+  if (comm->me == 0) {
+    const int size = sizeof(double);    // bytes, as Modify::read_restart reads them
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(&all, sizeof(double), 1, fp);
+  }
+}
+
+// the sum goes to rank 0 (compute_vector adds the ranks' shares)
+void FixTLSPHVelocityFilter::restart(char *buf)
+{
+  double all;
+  memcpy(&all, buf, sizeof(double));
+  de_sum = comm->me == 0 ? all : 0.0;
 }
 
 // number of particles filtered on this rank in the last step (global sum)

@@ -34,13 +34,20 @@ class FixTLSPHVelocityFilter : public Fix {
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
   double compute_scalar() override;
+  double compute_vector(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
 
  protected:
   double phi_c, eps;
   class PairTLSPHDamage *pair;
+  void record_energy(double);    // the energy taken out in this step
   std::vector<int> fidx;       // the particles filtered in this step
   std::vector<double> fvel;    // their new velocities (3 each)
   bigint nfiltered;
+  // the kinetic energy the filter took out: in the last step and since the
+  // fix was defined (this rank's share; the restart file holds the sum)
+  double de_step = 0.0, de_sum = 0.0;
 };
 
 }    // namespace LAMMPS_NS

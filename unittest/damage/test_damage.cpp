@@ -1230,6 +1230,8 @@ TEST(VelocityFilter, matches_eq_2_36)
   int untouched_changed = 0;
   const Sums s0 = sums(lmp);
   double drift = 0.0;
+  double de_expect = 0.0, de_total = 0.0, de_scale = 0.0;
+  int steps_with_energy = 0;
   for (int n = 0; n < 200; n++) {
     step(lmp);
     const double dtf = 0.5 * lmp->update->dt;
@@ -1257,6 +1259,12 @@ TEST(VelocityFilter, matches_eq_2_36)
         continue;
       }
       nfilt++;
+      {
+        // the kinetic energy the filter took out of this particle
+        const double m = atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]];
+        de_expect += 0.5 * m * (vi[0] * vi[0] + vi[1] * vi[1] - atom->v[i][0] * atom->v[i][0] -
+                                atom->v[i][1] * atom->v[i][1]);
+      }
       double s[2] = {0, 0}, ws = 0.0;
       for (int k = 0; k < b->npartner[i]; k++) {
         if (b->state[i][k] != INTACT) continue;
@@ -1274,9 +1282,17 @@ TEST(VelocityFilter, matches_eq_2_36)
       }
     }
     (void) bv;
-    // the fix reports the number it filtered
+    // the fix reports the number it filtered, and the kinetic energy it took
+    // out in this step and in all (its vector)
     const int ifix = lmp->modify->find_fix("filt");
     EXPECT_EQ(lmp->modify->fix[ifix]->compute_scalar(), (double) nfilt);
+    const double de_step = lmp->modify->fix[ifix]->compute_vector(0);
+    de_total += de_step;
+    de_scale = std::max(de_scale, std::fabs(de_expect));
+    EXPECT_NEAR(de_step, de_expect, 1e-12 * de_scale + 1e-300) << "step " << n;
+    EXPECT_NEAR(lmp->modify->fix[ifix]->compute_vector(1), de_total, 1e-12 * std::fabs(de_total) + 1e-300);
+    if (de_step != 0.0) steps_with_energy++;
+    de_expect = 0.0;
     nfiltered_total += nfilt;
     if (nfilt) steps_with_filter++;
     snapshot(vprev, atom->v);
@@ -1290,7 +1306,10 @@ TEST(VelocityFilter, matches_eq_2_36)
   printf("velocity filter: %d particle-steps filtered in %d steps; max |v - Eq. 2.36| = %.3g "
          "(|v| <= %.3g); %d unfiltered particles changed\n",
          nfiltered_total, steps_with_filter, worst, vscale, untouched_changed);
+  printf("velocity filter: kinetic energy taken out %.6g (%d steps with a change)\n", de_total,
+         steps_with_energy);
   EXPECT_GT(nfiltered_total, 20);
+  EXPECT_GT(steps_with_energy, 0);
   EXPECT_EQ(untouched_changed, 0);
   EXPECT_LE(worst, 1e-12 * vscale);
   delete lmp;

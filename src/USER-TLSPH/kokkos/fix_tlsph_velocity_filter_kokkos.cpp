@@ -30,7 +30,7 @@ FixTLSPHVelocityFilterKokkos<DeviceType>::FixTLSPHVelocityFilterKokkos(LAMMPS *l
   forward_comm_device = 1;
   atomKK = (AtomKokkos *) atom;
   execution_space = TLSPHKK::execution_space_of<DeviceType>();
-  datamask_read = V_MASK | MASK_MASK;
+  datamask_read = V_MASK | MASK_MASK | RMASS_MASK;
   datamask_modify = V_MASK;
 }
 
@@ -91,12 +91,22 @@ void FixTLSPHVelocityFilterKokkos<DeviceType>::filter()
         count++;
       },
       n);
-  Kokkos::parallel_for(
+  // the new velocities, and the kinetic energy they take out
+  const auto rmass = atomKK->k_rmass.template view<DeviceType>();
+  double de = 0.0;
+  Kokkos::parallel_reduce(
       "tlsph/velocity/filter/kk:copy", Kokkos::RangePolicy<DeviceType>(0, nlocal),
-      KOKKOS_LAMBDA(const int i) {
-        for (int d = 0; d < 3; d++) v(i, d) = vnew[3 * i + d];
-      });
+      KOKKOS_LAMBDA(const int i, double &sum) {
+        double v2 = 0.0;
+        for (int d = 0; d < 3; d++) {
+          v2 += v(i, d) * v(i, d) - vnew[3 * i + d] * vnew[3 * i + d];
+          v(i, d) = vnew[3 * i + d];
+        }
+        sum += 0.5 * rmass(i) * v2;
+      },
+      de);
   nfiltered = n;
+  record_energy(de);
 }
 
 template <class DeviceType>
