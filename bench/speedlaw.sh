@@ -35,7 +35,7 @@ done
 KFITS="$KFITS" BENCH="$HERE" python3 - "$OUT" "$commit" > "$HERE/speedlaw.md" <<'PY'
 import datetime, os, sys
 sys.path.insert(0, os.environ["BENCH"])
-from strip_speed import measure
+from strip_speed import measure, energy_rates
 out, commit = sys.argv[1], sys.argv[2]
 
 print("# The speed law of `criterion tip` against theory (bench/speedlaw.sh)\n")
@@ -46,8 +46,13 @@ print("- bench/in.toughness with `crit tip`: a pure-shear strip (60 mm, 5 mm bet
 print("- v: least squares of the tip position (the furthest damaged particle on the crack line) "
       "over 25-45 mm; G measured: the mean of the G the tip measured at the start of its segments "
       "there; theory: v = c_R (1 - G_c / G0), c_R = 2119 m/s (the pair style's)\n")
-print("| kfit | dx [mm] | G0 / G_c | v / c_R measured | theory | difference | G measured / G0 | segments |")
-print("|---|---:|---:|---:|---:|---:|---:|---:|")
+print("- cuts: the energy the cut bonds dissipated over the same window: the fall of compute "
+      "tlsph/energy's sum (strain, hourglass and viscous work, kinetic; the grips do no work) less the "
+      "kinetic energy the velocity filter took out, per unit crack advance (least squares against the "
+      "tip's position), over G_c; theory 1 (the tip model applies Freund's equation of motion, which "
+      "gives the tip G_c); viscosity: the artificial viscosity's work per unit crack advance, over G_c\n")
+print("| kfit | dx [mm] | G0 / G_c | v / c_R measured | theory | difference | G measured / G0 | segments | cuts / G_c | viscosity / G_c |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
 for kfit in os.environ["KFITS"].split():
     for dx in ("0.0005", "0.000333333333333"):
         for r in ("1.25", "1.5", "2.0"):
@@ -55,7 +60,8 @@ for kfit in os.environ["KFITS"].split():
             v, g = measure("%s/%s" % (out, tag))
             gm = sum(g) / len(g) if g else float("nan")
             th = 1.0 - 1.0 / float(r)
-            print("| %s | %.3f | %s | %.3f | %.3f | %+.3f | %.2f | %d |" % (
-                kfit, float(dx) * 1e3, r, v, th, v - th, gm / float(r), len(g)))
+            cut, visc = energy_rates("%s/%s" % (out, tag))
+            print("| %s | %.3f | %s | %.3f | %.3f | %+.3f | %.2f | %d | %.3f | %.3f |" % (
+                kfit, float(dx) * 1e3, r, v, th, v - th, gm / float(r), len(g), cut / 3.0, visc / 3.0))
 PY
 cat "$HERE/speedlaw.md"

@@ -1,6 +1,7 @@
 """The steady speed of a crack-tip-tracking crack in the pure-shear strip of
 bench/in.toughness, and the G its tip measured, from a run's PREFIX.dat
-(time strain G broken tip off) and its log with TLSPH_TIP_TRACE lines.
+(time strain G broken tip off etot filtered) and its log with TLSPH_TIP_TRACE
+lines; the energy the cut bonds and the viscosity dissipated per crack area.
 Used by bench/speedlaw.sh and bench/tipconst.sh. Plain Python."""
 import re
 
@@ -31,3 +32,24 @@ def measure(prefix):
     g = [float(l.split()[7]) for l in log.splitlines()
          if l.startswith("tip-trace") and WINDOW[0] < float(l.split()[3]) < WINDOW[1]]
     return v, g
+
+
+def energy_rates(prefix):
+    """per unit crack advance over the window [J/m^2] (least squares slopes
+    against the tip's position; per unit thickness, the strip's is 1), from
+    PREFIX.dat: (the energy the cut bonds dissipated: the fall of compute
+    tlsph/energy's sum less the velocity filter's share; the artificial
+    viscosity's work)"""
+    a, e, f, w = [], [], [], []
+    for line in open(prefix + ".dat"):
+        if line.startswith("#"):
+            continue
+        c = line.split()
+        if WINDOW[0] < float(c[4]) < WINDOW[1]:
+            a.append(float(c[4]))
+            e.append(float(c[6]))
+            f.append(float(c[7]))
+            w.append(float(c[9]))
+    if len(a) < 3:
+        return float("nan"), float("nan")
+    return -fit(a, e) - fit(a, f), fit(a, w)

@@ -24,6 +24,15 @@ examples.tip-j.merge.
   of G0 (bench/speedlaw.md, e27a014: +0.022 and +0.035 c_R, G 1.02 and
   1.09 G0; at 0.5 mm +0.038 and +0.047 c_R; with the displacement-correlation
   K, kfit tip, the speed is 0.13 to 0.27 c_R too high).
+  Energy: the grips do no work, so the energy the fracture dissipates is
+  the fall of the model's energy (compute tlsph/energy: strain, hourglass
+  and viscous work, kinetic) less what the velocity filter took out (its
+  vector); per crack area over the same window it must be G_c to 15 %.
+  The tolerance is the G check's: the tip runs at c_R (1 - G_c / G) with
+  the G it measures, and Freund's energy balance, G_dyn = (1 - v / c_R) G0,
+  then gives the tip G_c G0 / G, as far from G_c as G is from G0
+  (measured at dx = 0.5 / 0.333 / 0.25 mm: 0.928 / 0.993 / - G_c at
+  G0 = 1.5 G_c, 1.068 / 1.130 / 1.077 G_c at 2 G_c; the filter's share 0).
 --case kink: the central crack of bench/in.kcheck at dx = 1 mm under remote
   shear (mode II) of 1 MPa applied at once, G_c 0.3 J/m^2 (the static
   G = K_II^2 / E' is 0.47 J/m^2 and the maximum-tangential-stress rule's
@@ -131,6 +140,19 @@ def kcheck(a):
     return verdict(checks)
 
 
+GC = 3.0    # bench/in.toughness's G_c [J/m^2]
+
+
+def energy_per_area(d):
+    """(energy the cut bonds dissipated, energy the velocity filter took out,
+    per unit crack advance [J/m^2] from rows of a bench/in.toughness .dat
+    (time strain G broken tip off etot filtered strain viscous kinetic; per
+    unit thickness, the strip's is 1): least squares slopes against the
+    tip's position; and the artificial viscosity's work"""
+    filt = np.polyfit(d[:, 4], d[:, 7], 1)[0]
+    return -np.polyfit(d[:, 4], d[:, 6], 1)[0] - filt, filt, np.polyfit(d[:, 4], d[:, 9], 1)[0]
+
+
 def speedlaw(a):
     checks = []
     for r in (1.5, 2.0):
@@ -158,6 +180,15 @@ def speedlaw(a):
         print(f"G0 = {r} G_c: v = {v:.3f} c_R, the law {th:.3f} c_R; G measured {gm:.3f} G0 ({len(g)} segments)")
         checks.append((f"G0 {r} G_c: speed {v:.3f} c_R within 0.05 c_R of the law ({th:.3f})", abs(v - th) <= 0.05))
         checks.append((f"G0 {r} G_c: G measured {gm:.3f} G0 within 15 %", abs(gm - 1.0) <= 0.15))
+        # the energy the fracture dissipated per crack area, over the same
+        # window: the fall of e1 + e2 + e3 + e4 (compute tlsph/energy; the
+        # grips do no work) less the velocity filter's share, per advance
+        dis, filt, visc = energy_per_area(d[sel])
+        print(f"G0 = {r} G_c: energy dissipated by the cuts {dis / GC:.3f} G_c per crack area "
+              f"(the velocity filter's {filt / GC:+.3f} G_c besides; the viscosity's work "
+              f"{visc / GC:.3f} G_c)")
+        checks.append((f"G0 {r} G_c: energy dissipated by the cuts {dis / GC:.3f} G_c per crack area "
+                       f"within 15 % of G_c", abs(dis / GC - 1.0) <= 0.15))
     return verdict(checks)
 
 
