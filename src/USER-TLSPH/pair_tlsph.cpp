@@ -81,6 +81,7 @@ PairTLSPH::~PairTLSPH()
   memory->destroy(ell.j);
   memory->destroy(ell.v);
   memory->destroy(ell.kind);
+  memory->destroy(ell.shared);
   memory->destroy(ell.first);
   memory->destroy(ell.n);
   memory->destroy(ell.pat);
@@ -594,7 +595,7 @@ void PairTLSPH::init_style()
     ngw_max = 0;
   }
   ell_version = -1;
-  ell_nrefill = ell_nrelaid = 0;
+  ell_nrefill = ell_nrelaid = ell_nunshared = 0;
   ell_nscreened = ell_nskipped = 0;
   ell_nperm = 0;    // the columns' size follows the packed rows
   report_simd = 1;

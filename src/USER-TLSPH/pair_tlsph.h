@@ -123,11 +123,13 @@ class PairTLSPH : public Pair {
     }
     *npat = simd_isa ? ell.npat : 0;
   }
-  // tlsph/damage: lanes re-filled and pattern chunks given blocks of their own since init
-  void simd_refills(bigint *lanes, bigint *relaid) const
+  // tlsph/damage: lanes re-filled, pattern chunks given blocks of their own
+  // and chunks that shared blocks given a copy of their own, since init
+  void simd_refills(bigint *lanes, bigint *relaid, bigint *unshared = nullptr) const
   {
     *lanes = ell_nrefill;
     *relaid = ell_nrelaid;
+    if (unshared) *unshared = ell_nunshared;
   }
   // tlsph/damage: chunks the stretch screen visited, and chunks it could skip, since init
   void simd_screens(bigint *screened, bigint *skipped) const
@@ -340,7 +342,7 @@ class PairTLSPH : public Pair {
   int *ell_chunk_of = nullptr;  // the step's order (local particles) -> its chunk
   bigint ell_nblock = 0;        // slot blocks in use
   std::vector<int> ell_dirty;   // local particles whose bonds changed since build_ell
-  bigint ell_nrefill = 0, ell_nrelaid = 0;    // (simd_refills)
+  bigint ell_nrefill = 0, ell_nrelaid = 0, ell_nunshared = 0;    // (simd_refills)
   int report_simd = 1;             // 1: log the layout at the next build_ell
   // tlsph/damage: particle i's bonds changed (its lane is re-filled before the force pass)
   void ell_mark(int i)

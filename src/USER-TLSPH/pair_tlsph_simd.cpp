@@ -372,7 +372,7 @@ void PairTLSPH::build_ell()
   const int nchunk = (int) cfirst.size();
   if (nchunk + 1 > ell_nstart) {
     ell_nstart = nchunk + 1 + nchunk / 8 + 8;
-    for (int **a : {&ell.start, &ell.width, &ell.first, &ell.n, &ell.kind, &ell.pat}) {
+    for (int **a : {&ell.start, &ell.width, &ell.first, &ell.n, &ell.kind, &ell.pat, &ell.shared}) {
       memory->destroy(*a);
       memory->create(*a, ell_nstart, "tlsph:ell_chunks");
     }
@@ -399,7 +399,7 @@ void PairTLSPH::build_ell()
       bond_values(i, gi, wi);
       int q = 0;    // the lane's next own bond (sorted like the offsets)
       for (int m = 0; m < w; m++) {
-        sj[(size_t) C * m + l] = ii + off[m];
+        sj[(size_t) C * m + l] = l + off[m];    // relative to the chunk's first particle
         if (q < nb && bo[b0 + q].first - ii == off[m]) {
           ell_put_bond(sv.data() + (size_t) nv * C * m, l, i, bo[b0 + q].second, gi, wi);
           q++;
@@ -449,7 +449,7 @@ void PairTLSPH::build_ell()
     std::vector<int> off(w);
     std::vector<double> val((size_t) nv * w);
     for (int m = 0; m < w; m++) {
-      off[m] = sj[(size_t) C * m] - ell.first[c];
+      off[m] = sj[(size_t) C * m];
       for (int k = 0; k < nv; k++) val[(size_t) nv * m + k] = sv[(size_t) nv * C * m + C * k];
     }
     const std::string key(reinterpret_cast<const char *>(off.data()), sizeof(int) * off.size());
@@ -484,20 +484,58 @@ void PairTLSPH::build_ell()
   std::copy(pat_start.begin(), pat_start.end(), ell.pat_start);
   std::copy(pat_off.begin(), pat_off.end(), ell.pat_off);
   std::copy(pat_v.begin(), pat_v.end(), ell.pat_v);
-  if (nblock > ell_nblock_max) {
-    ell_nblock_max = nblock + nblock / 32 + 16;
-    memory->destroy(ell.j);
-    memory->destroy(ell.v);
-    memory->create(ell.j, ell_nblock_max * C, "tlsph:ell_j");
-    memory->create(ell.v, ell_nblock_max * C * nv, "tlsph:ell_v");
-  }
-  // pass 2: the blocks of the chunks that are not patterns
+  /* pass 2: the blocks of the chunks that are not patterns; a chunk whose
+     lanes, offsets and values lane by lane, are those of an earlier chunk
+     within the tolerance (a translated copy: the same end of another row)
+     reads that chunk's blocks */
+  std::map<std::string, std::vector<int>> owners;
   int b = 0;
+  bigint nshared = 0;
   for (int c = 0; c < nchunk; c++) {
     int w = 0;
     ell.start[c] = b;
+    ell.shared[c] = 0;
     if (ell.kind[c] != EllArrays::PATTERN) {
       w = fill(c);
+      std::string key(reinterpret_cast<const char *>(&ell.n[c]), sizeof(int));
+      for (int m = 0; m < w; m++) key.append(reinterpret_cast<const char *>(&sj[(size_t) C * m]), sizeof(int));
+      auto &cands = owners[key];
+      int found = -1;
+      for (int o : cands) {
+        // the largest difference of a value, lane by lane, relative to the
+        // largest magnitude of that quantity in the two chunks (as spread)
+        const double *ov = ell.v + (bigint) nv * C * ell.start[o];
+        const size_t nval = (size_t) nv * C * w;
+        double scale[TLSPH::EllShape<3>::NV] = {0, 0, 0, 0, 0, 0}, worst = 0.0;
+        for (size_t at = 0; at < nval; at++) {
+          const int k = (int) ((at / C) % nv);
+          double &sc = scale[k < dim ? 0 : k];
+          sc = std::max(sc, std::max(std::fabs(sv[at]), std::fabs(ov[at])));
+        }
+        for (size_t at = 0; at < nval && worst <= ELL_SHARE_TOL; at++)
+          if (sv[at] != ov[at]) {
+            const int k = (int) ((at / C) % nv);
+            worst = std::max(worst, std::fabs(sv[at] - ov[at]) / scale[k < dim ? 0 : k]);
+          }
+        if (worst <= ELL_SHARE_TOL) {
+          found = o;
+          break;
+        }
+      }
+      if (found >= 0) {
+        ell.start[c] = ell.start[found];
+        ell.shared[c] = ell.shared[found] = 1;
+        ell.width[c] = w;
+        nshared += ell.n[c];
+        continue;
+      }
+      cands.push_back(c);
+      if (b + w > ell_nblock_max) {
+        // at most the blocks of every stencil chunk (pass 1's count)
+        ell_nblock_max = std::max<bigint>(b + w, std::min<bigint>(nblock, 2 * (bigint) b + w + 16));
+        memory->grow(ell.j, ell_nblock_max * C, "tlsph:ell_j");
+        memory->grow(ell.v, ell_nblock_max * C * nv, "tlsph:ell_v");
+      }
       std::copy(sj.begin(), sj.end(), ell.j + (bigint) C * b);
       std::copy(sv.begin(), sv.end(), ell.v + (bigint) nv * C * b);
     }
@@ -511,19 +549,19 @@ void PairTLSPH::build_ell()
   if (report_simd) {
     // once per run: how the particles were laid out (rank sums)
     report_simd = 0;
-    bigint mine[6] = {0, 0, 0, 0, ell.npat, nblock}, all[6];
+    bigint mine[7] = {0, 0, 0, 0, ell.npat, nblock, nshared}, all[7];
     for (int c = 0; c < nchunk; c++) {
       mine[ell.kind[c] == EllArrays::PATTERN ? 1 : 0] += ell.n[c];
       if (ell.n[c] == 1) mine[2]++;
       mine[3]++;
     }
-    MPI_Allreduce(mine, all, 6, MPI_LMP_BIGINT, MPI_SUM, world);
+    MPI_Allreduce(mine, all, 7, MPI_LMP_BIGINT, MPI_SUM, world);
     if (comm->me == 0)
       utils::logmesg(lmp, "pair tlsph: SIMD step ({}, up to {} lanes): {} particles in {} chunks; "
                           "{} read their bonds from {} shared pattern(s), {} their own ({} of "
-                          "them alone in a chunk)\n",
+                          "them alone in a chunk; {} from the blocks of a translated copy)\n",
                      simd_name(simd_isa), C, all[0] + all[1], all[3], all[1], all[4], all[0],
-                     all[2]);
+                     all[2], all[6]);
   }
 }
 
@@ -572,7 +610,7 @@ void PairTLSPH::ell_fill_lane(int c, int l)
 {
   constexpr int C = TLSPH::ELL_C;
   const int nv = dim + 3;
-  const int first = ell.first[c], k = first + l, i = ell_perm[k], w = ell.width[c];
+  const int k = ell.first[c] + l, i = ell_perm[k], w = ell.width[c];
   const int *jb = ell.j + (bigint) C * ell.start[c];
   double *vb = ell.v + (bigint) nv * C * ell.start[c];
   for (int m = 0; m < w; m++)
@@ -595,10 +633,10 @@ void PairTLSPH::ell_fill_lane(int c, int l)
     int lo = 0, hi = w;
     while (lo < hi) {
       const int mid = (lo + hi) / 2;
-      if (jb[(bigint) C * mid] - first < off) lo = mid + 1;
+      if (jb[(bigint) C * mid] < off) lo = mid + 1;
       else hi = mid;
     }
-    if (lo == w || jb[(bigint) C * lo] - first != off)
+    if (lo == w || jb[(bigint) C * lo] != off)
       error->one(FLERR, "pair {}: internal error: a bond of atom {} has no slot in the SIMD "
                         "step's layout", force->pair_style, atom->tag[i]);
     ell_put_bond(vb + (bigint) nv * C * lo, l, i, mm, gi, wi);
@@ -609,7 +647,8 @@ void PairTLSPH::ell_fill_lane(int c, int l)
    (ell_dirty: tlsph/damage's breaks and cuts): each such particle's lane
    re-filled; a pattern chunk first gets blocks of its own, behind the
    others, with its pattern's slots (its other lanes filled from their own
-   bonds, as build_ell fills a stencil chunk). */
+   bonds, as build_ell fills a stencil chunk), and a chunk whose blocks
+   other chunks read too a copy of them. */
 void PairTLSPH::ell_apply_dirty()
 {
   constexpr int C = TLSPH::ELL_C;
@@ -625,13 +664,30 @@ void PairTLSPH::ell_apply_dirty()
       }
       int *jb = ell.j + (bigint) C * ell_nblock;
       for (int m = 0; m < w; m++)
-        for (int l = 0; l < C; l++) jb[(bigint) C * m + l] = ell.first[c] + l + ell.pat_off[m0 + m];
+        for (int l = 0; l < C; l++) jb[(bigint) C * m + l] = l + ell.pat_off[m0 + m];
       ell.kind[c] = EllArrays::STENCIL;
       ell.start[c] = (int) ell_nblock;
       ell.width[c] = w;
       ell_nblock += w;
       for (int l = 0; l < ell.n[c]; l++) ell_fill_lane(c, l);
       ell_nrelaid++;
+    } else if (ell.shared[c]) {
+      // blocks that other chunks read too: a copy of its own behind the others
+      const int w = ell.width[c];
+      if (ell_nblock + w > ell_nblock_max) {
+        ell_nblock_max = ell_nblock + w + ell_nblock / 8 + 16;
+        memory->grow(ell.j, ell_nblock_max * C, "tlsph:ell_j");
+        memory->grow(ell.v, ell_nblock_max * C * nv, "tlsph:ell_v");
+      }
+      std::copy(ell.j + (bigint) C * ell.start[c], ell.j + (bigint) C * (ell.start[c] + w),
+                ell.j + (bigint) C * ell_nblock);
+      std::copy(ell.v + (bigint) nv * C * ell.start[c], ell.v + (bigint) nv * C * (ell.start[c] + w),
+                ell.v + (bigint) nv * C * ell_nblock);
+      ell.start[c] = (int) ell_nblock;
+      ell.shared[c] = 0;
+      ell_nblock += w;
+      ell_fill_lane(c, k - ell.first[c]);
+      ell_nunshared++;
     } else {
       ell_fill_lane(c, k - ell.first[c]);
     }

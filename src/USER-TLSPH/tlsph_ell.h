@@ -16,14 +16,20 @@
    slots) has blocks start[c] <= b < start[c] + w_c, block b holding slot
    m = b - start[c] (in chunk order, except the chunks that tlsph/damage
    re-lays behind the others when a bond of theirs breaks):
-     j[C b]                     partner of lane 0
+     j[C b]                     partner of lane 0 minus first[c] (the
+                                slot's offset; lane l's partner is
+                                first[c] + l + j[C b])
      v[NV C b + C k + l]        k = 0..DIM-1: corrected gradient g_ij (k-th
                                 component); DIM: wv, DIM + 1: whg (the
                                 viscous and hourglass weights, TLSPH::Bond);
                                 DIM + 2: the reverse weight c_ij = V_i w_ij
    A chunk whose values are also the same in every lane (a lattice
    interior: translated copies of one neighbourhood) keeps no blocks: it
-   reads a pattern shared by all such chunks.
+   reads a pattern shared by all such chunks. Chunks whose offsets and
+   values, lane by lane, are those of another chunk (the ends of a
+   lattice's rows: translated copies of one row end) read that chunk's
+   blocks (shared[c] = 1 for all of them: tlsph/damage gives such a chunk
+   blocks of its own before it changes a lane).
 
    Force pass: the stress term in the gather form (each particle sums it
    from its own bonds, reading the partners' packed rows with R = V P Q),
@@ -65,6 +71,7 @@ struct EllArrays {
   int *j = nullptr;        // C per block (lane 0's partner first)
   double *v = nullptr;     // NV C per block
   int *kind = nullptr;     // per chunk: STENCIL (its blocks) or PATTERN
+  int *shared = nullptr;   // per chunk: 1 if other chunks read its blocks too
   // patterns: slot m of pattern q (pat_start[q] <= m < pat_start[q + 1])
   // has partners i0 + pat_off[m] + l and the NV values pat_v[NV m ..]
   int *pat = nullptr;      // per chunk: its pattern (PATTERN chunks)

@@ -52,7 +52,8 @@ template <int DIM> struct LaneSlots {
   const int *j;       // at the chunk's first block
   const double *v;
   int n;
-  TLSPH_FORCE_INLINE long j0(int m) const { return j[(long) ELL_C * m]; }
+  long i0;            // the chunk's first particle (j holds offsets from it)
+  TLSPH_FORCE_INLINE long j0(int m) const { return i0 + j[(long) ELL_C * m]; }
   template <class V> TLSPH_FORCE_INLINE V val(int m, int k, int h) const
   {
     return ell_load<V>(v + (long) EllShape<DIM>::NV * ELL_C * m + ELL_C * k + h);
@@ -74,7 +75,7 @@ template <int DIM> TLSPH_FORCE_INLINE LaneSlots<DIM> lane_slots(const EllArrays 
 {
   const long b0 = e.start[c];
   return LaneSlots<DIM>{e.j + ELL_C * b0, e.v + (long) EllShape<DIM>::NV * ELL_C * b0,
-                        e.width[c]};
+                        e.width[c], (long) e.first[c]};
 }
 template <int DIM> TLSPH_FORCE_INLINE PatternSlots<DIM> pattern_slots(const EllArrays &e, int c)
 {

@@ -1520,7 +1520,8 @@ fix pb bot move linear 0 0.5 NULL units box
    12. the SIMD step of tlsph/damage (doc/pair_tlsph_damage.rst, "SIMD"):
    the bonds break in the scalar deformation pass, the force pass runs on
    the sliced-ELLPACK layout whose lanes are re-filled when a bond of
-   theirs breaks (a pattern chunk gets blocks of its own). Against the
+   theirs breaks (a pattern chunk gets blocks of its own, and so does a
+   chunk that read the blocks of a translated copy). Against the
    scalar step ('simd no'): the same broken bonds, atom by atom, and the
    trajectory to round-off. The yardstick of round-off is measured in the
    same test: the scalar step with newton off (the gather form) against
@@ -1535,6 +1536,8 @@ struct SimdRun {
   int simd = 0;
   int pattern_particles0 = 0;    // before the run
   long refills = 0, relaid = 0;  // lanes re-filled, pattern chunks re-laid
+  long unshared = 0;             // chunks that shared blocks given their own
+  int shared0 = 0;               // particles reading shared blocks before the run
   long screened = 0, skipped = 0;  // chunks the stretch screen visited / proved safe
   double broken = 0.0;                                   // intact bond ends lost
 };
@@ -1555,9 +1558,9 @@ SimdRun simd_run(const std::function<std::string(const std::string &)> &script,
   r.pattern_particles0 = kinds[1];
   const double intact0 = total_intact(damage_columns(lmp));
   lmp->input->one(("run " + std::to_string(nsteps) + " post no").c_str());
-  LAMMPS_NS::bigint refills, relaid;
-  pair->simd_refills(&refills, &relaid);
-  r.refills = refills, r.relaid = relaid;
+  LAMMPS_NS::bigint refills, relaid, unshared;
+  pair->simd_refills(&refills, &relaid, &unshared);
+  r.refills = refills, r.relaid = relaid, r.unshared = unshared;
   LAMMPS_NS::bigint screened, skipped;
   pair->simd_screens(&screened, &skipped);
   r.screened = screened, r.skipped = skipped;
@@ -1609,11 +1612,13 @@ void simd_damage_test(const std::function<std::string(const std::string &)> &scr
     auto diff = trajectory_difference(ref, r);
     diff[0] /= length;
     printf("simd %s: |dx|/L %.3g, |dv|/vmax %.3g; %d particles in pattern chunks at the start; "
-           "%ld lanes re-filled, %ld pattern chunks re-laid; stretch screen: %ld chunks visited, "
-           "%ld skipped\n", LAMMPS_NS::PairTLSPH::simd_name(isa),
-           diff[0], diff[1], r.pattern_particles0, r.refills, r.relaid, r.screened, r.skipped);
+           "%ld lanes re-filled, %ld pattern chunks re-laid, %ld chunks that shared blocks given "
+           "their own; stretch screen: %ld chunks visited, %ld skipped\n",
+           LAMMPS_NS::PairTLSPH::simd_name(isa), diff[0], diff[1], r.pattern_particles0, r.refills,
+           r.relaid, r.unshared, r.screened, r.skipped);
     EXPECT_GT(r.pattern_particles0, 0) << "no pattern chunks: their re-laying is not exercised";
     EXPECT_GT(r.relaid, 0) << "no pattern chunk was re-laid";
+    EXPECT_GT(r.unshared, 0) << "no chunk that shared blocks was given its own";
     EXPECT_GT(r.refills, r.relaid) << "no lane of a stencil chunk was re-filled";
     if (skips) {
       EXPECT_GT(r.skipped, 1000) << "the screen's skipping is not exercised";
