@@ -228,13 +228,6 @@ inline Principal2 principal_stress_2d(double sx, double sy, double sxy)
   return Principal2{c + r, 0.5 * std::atan2(2.0 * sxy, sx - sy)};
 }
 
-/* Its largest principal value alone (no direction: no atan2). */
-inline double largest_principal_2d(double sx, double sy, double sxy)
-{
-  const double d = 0.5 * (sx - sy);
-  return 0.5 * (sx + sy) + std::sqrt(d * d + sxy * sxy);
-}
-
 /* The half length of a nucleated crack: Irwin's a_c = E' G_c / (pi
    sigma_t^2), at which a crack of length 2 a_c in a remote stress sigma_t
    has G = G_c (it is critical when it is born), but no shorter than half the

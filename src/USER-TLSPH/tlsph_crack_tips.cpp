@@ -22,6 +22,18 @@
 
 using namespace LAMMPS_NS;
 
+namespace {
+/* The trace of pre-crack c in the xy plane (ends A = (t[0], t[1]) and
+   B = (t[2], t[3])): in 2D its segment; in 3D, a parallelogram with one
+   edge along z (find_tips refuses others), its edge that is not along z. */
+std::array<double, 4> crack_trace(int dim, const std::array<double, 9> &c)
+{
+  if (dim == 2) return {c[0], c[1], c[2], c[3]};
+  const bool wz = (c[6] == c[0] && c[7] == c[1]);
+  return {c[0], c[1], wz ? c[3] : c[6], wz ? c[4] : c[7]};
+}
+}    // namespace
+
 TLSPHCrackTips::TLSPHCrackTips(LAMMPS *lmp, PairTLSPHDamage *p) : Pointers(lmp), pair(p)
 {
   defaults();
@@ -326,21 +338,15 @@ void TLSPHCrackTips::find_tips()
   list.clear();
   std::vector<std::array<double, 2>> ends;
   for (const auto &c : pair->cracks) {
-    if (pair->dim == 2) {
-      ends.push_back({c[0], c[1]});
-      ends.push_back({c[2], c[3]});
-    } else {
-      // 3D: through-thickness cracks only, a parallelogram with one edge
-      // along z; its trace in the xy plane is tracked (the crack surface is
-      // that trace extruded through the thickness)
-      const bool wz = (c[6] == c[0] && c[7] == c[1]), uz = (c[3] == c[0] && c[4] == c[1]);
-      if (!wz && !uz)
-        error->all(FLERR, "pair tlsph/damage: 'criterion tip' in 3D needs pre-cracks through "
-                          "the thickness (a parallelogram with one edge along z)");
-      ends.push_back({c[0], c[1]});
-      if (wz) ends.push_back({c[3], c[4]});
-      else ends.push_back({c[6], c[7]});
-    }
+    // 3D: through-thickness cracks only, a parallelogram with one edge
+    // along z; its trace in the xy plane is tracked (the crack surface is
+    // that trace extruded through the thickness)
+    if (pair->dim == 3 && !(c[6] == c[0] && c[7] == c[1]) && !(c[3] == c[0] && c[4] == c[1]))
+      error->all(FLERR, "pair tlsph/damage: 'criterion tip' in 3D needs pre-cracks through "
+                        "the thickness (a parallelogram with one edge along z)");
+    const auto t = crack_trace(pair->dim, c);
+    ends.push_back({t[0], t[1]});
+    ends.push_back({t[2], t[3]});
   }
   std::vector<double> vol;
   volume_near(ends, 2.0 * pair->h, vol);
@@ -482,13 +488,8 @@ double TLSPHCrackTips::first_crossing(int a, const double *P, const double *Q)
     if (t > 0.0 && (best < 0.0 || t < best)) best = t;
   };
   for (const auto &c : pair->cracks) {
-    if (pair->dim == 2) {
-      test(&c[0], &c[2]);
-    } else {
-      const bool wz = (c[6] == c[0] && c[7] == c[1]);
-      const double B[2] = {wz ? c[3] : c[6], wz ? c[4] : c[7]};
-      test(&c[0], B);
-    }
+    const auto t = crack_trace(pair->dim, c);
+    test(&t[0], &t[2]);
   }
   for (size_t b = 0; b < list.size(); b++) {
     const auto &path = list[b].path;
@@ -927,14 +928,7 @@ void TLSPHCrackTips::nucleate()
   const double L = TLSPH::nucleation_half_length(Eprime, Gc, sigma_t, reach);
   // the cracks there are: pre-crack traces and the tips' paths
   std::vector<std::array<double, 4>> segs;
-  for (const auto &c : pair->cracks) {
-    if (pair->dim == 2) {
-      segs.push_back({c[0], c[1], c[2], c[3]});
-    } else {
-      const bool wz = (c[6] == c[0] && c[7] == c[1]);
-      segs.push_back({c[0], c[1], wz ? c[3] : c[6], wz ? c[4] : c[7]});
-    }
-  }
+  for (const auto &c : pair->cracks) segs.push_back(crack_trace(pair->dim, c));
   for (const auto &tp : list)
     for (size_t v = 1; v < tp.path.size(); v++)
       segs.push_back({tp.path[v - 1][0], tp.path[v - 1][1], tp.path[v][0], tp.path[v][1]});
