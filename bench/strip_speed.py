@@ -15,19 +15,26 @@ def fit(t, y):
     return sum((a - mt) * (b - my) for a, b in zip(t, y)) / sum((a - mt) ** 2 for a in t)
 
 
-def measure(prefix):
-    """(v / c_R over the window, or nan; the mean G / G_c... as measured at the
-    segments' starts in the window, the list of those G) for the run PREFIX"""
-    log = open(prefix + ".log").read()
-    cR = float(re.search(r"c_R ([0-9.e+]+)", log).group(1))
-    t, y = [], []
+def window_columns(prefix, cols):
+    """the columns cols of PREFIX.dat (time strain G broken tip off etot
+    filtered strain viscous kinetic), over the rows whose tip is in the window"""
+    out = [[] for _ in cols]
     for line in open(prefix + ".dat"):
         if line.startswith("#"):
             continue
         c = line.split()
         if WINDOW[0] < float(c[4]) < WINDOW[1]:
-            t.append(float(c[0]))
-            y.append(float(c[4]))
+            for k, col in enumerate(cols):
+                out[k].append(float(c[col]))
+    return out
+
+
+def measure(prefix):
+    """(v / c_R over the window, or nan; the mean G / G_c... as measured at the
+    segments' starts in the window, the list of those G) for the run PREFIX"""
+    log = open(prefix + ".log").read()
+    cR = float(re.search(r"c_R ([0-9.e+]+)", log).group(1))
+    t, y = window_columns(prefix, (0, 4))
     v = fit(t, y) / cR if len(t) > 2 else float("nan")
     g = [float(l.split()[7]) for l in log.splitlines()
          if l.startswith("tip-trace") and WINDOW[0] < float(l.split()[3]) < WINDOW[1]]
@@ -40,16 +47,7 @@ def energy_rates(prefix):
     PREFIX.dat: (the energy the cut bonds dissipated: the fall of compute
     tlsph/energy's sum less the velocity filter's share; the artificial
     viscosity's work)"""
-    a, e, f, w = [], [], [], []
-    for line in open(prefix + ".dat"):
-        if line.startswith("#"):
-            continue
-        c = line.split()
-        if WINDOW[0] < float(c[4]) < WINDOW[1]:
-            a.append(float(c[4]))
-            e.append(float(c[6]))
-            f.append(float(c[7]))
-            w.append(float(c[9]))
+    a, e, f, w = window_columns(prefix, (4, 6, 7, 9))
     if len(a) < 3:
         return float("nan"), float("nan")
     return -fit(a, e) - fit(a, f), fit(a, w)
