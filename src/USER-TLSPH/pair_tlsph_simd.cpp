@@ -61,6 +61,11 @@ constexpr double ELL_SHARE_TOL = 1.0e-13;
    largest bond count among them (the lanes' zero-weight slots are work
    without use; a particle left alone runs in a vector of one lane). */
 constexpr double ELL_UNION_SLACK = 1.25;
+/* A chunk is compared with at most this many earlier ones of the same
+   offsets (the first found: on a lattice the few kinds of neighbourhood),
+   so that a particle set whose chunks share offsets but not values does not
+   make build_ell quadratic in the chunks. */
+constexpr size_t ELL_SHARE_CANDIDATES = 16;
 using TLSPH::EllArrays;
 using TLSPH::EllParticles;
 using DeformFn = void (*)(const EllArrays &, const EllParticles &, double *, TLSPH::EllStress *,
@@ -467,7 +472,7 @@ void PairTLSPH::build_ell()
     }
     if (found < 0) {
       found = npat++;
-      cands.push_back(found);
+      if (cands.size() < ELL_SHARE_CANDIDATES) cands.push_back(found);
       pat_off.insert(pat_off.end(), off.begin(), off.end());
       pat_v.insert(pat_v.end(), val.begin(), val.end());
       pat_start.push_back((int) pat_off.size());
@@ -529,7 +534,7 @@ void PairTLSPH::build_ell()
         nshared += ell.n[c];
         continue;
       }
-      cands.push_back(c);
+      if (cands.size() < ELL_SHARE_CANDIDATES) cands.push_back(c);
       if (b + w > ell_nblock_max) {
         // at most the blocks of every stencil chunk (pass 1's count)
         ell_nblock_max = std::max<bigint>(b + w, std::min<bigint>(nblock, 2 * (bigint) b + w + 16));
