@@ -27,13 +27,16 @@ run() {    # ranks pair
   t=$(grep "Loop time" "$log" | tail -1 | awk '{print $4}')
   comm=$(grep "^Comm " "$log" | tail -1 | awk '{print $NF}')
   echo "$2 $1 $t $comm" >> "$OUT/times.txt"
+  # the SIMD layout of the ranks (the pair's log line, rank sums)
+  [ "$2" = 1 ] && grep -m1 "pair tlsph: SIMD step (" "$log" | sed 's/^pair tlsph: //' > "$OUT/layout-np$1.txt"
+  return 0
 }
 for p in $(seq "$PAIRS"); do
   run 1 "$p"
   run 2 "$p"
 done
 /usr/bin/python3 - "$OUT/times.txt" "$HERE/scaling.md" "$(git -C "$ROOT" describe --always --dirty 2>/dev/null || echo '?')" \
-  "$n" "$ns" <<'EOF'
+  "$n" "$ns" "$OUT" <<'EOF'
 import datetime, statistics, sys
 rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
 t = {}
@@ -59,7 +62,14 @@ out = ["# Two MPI ranks against one (bench/scaling.sh)", "",
 for p, r in zip(pairs, ratios):
     out.append(f"| {p} | {t[(p, 1)]:.3f} | {t[(p, 2)]:.3f} | {r:.2f} | {comm[(p, 1)]:.2f} | {comm[(p, 2)]:.2f} |")
 out += ["", f"Median ratio: **{statistics.median(ratios):.2f}x** (range {min(ratios):.2f}-{max(ratios):.2f}x; "
-        "issue 24 asks >= 1.85x)", ""]
+        "issue 24 asks >= 1.85x)", "",
+        "The SIMD layout (pair tlsph's log line of pair 1, sums over the ranks):", ""]
+for np_ in (1, 2):
+    try:
+        out.append(f"- {np_} rank(s): {open(f'{sys.argv[6]}/layout-np{np_}.txt').read().strip()}")
+    except OSError:
+        out.append(f"- {np_} rank(s): (no layout line: simd no?)")
+out.append("")
 open(sys.argv[2], "w").write("\n".join(out))
 print("\n".join(out))
 EOF

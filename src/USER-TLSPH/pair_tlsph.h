@@ -137,6 +137,7 @@ class PairTLSPH : public Pair {
     *screened = ell_nscreened;
     *skipped = ell_nskipped;
   }
+  void sort_axes(int *ax) const;    // the axes of the SIMD step's order, slowest first
   void sort_particles();    // the SIMD step's order of the local particles (its bond fix calls it)
 
   /* the per-particle part of pass (1) for material m (TLSPH::particle_stress_row

@@ -276,7 +276,7 @@ void PairTLSPH::select_simd()
 
 /* The SIMD step's data after every build of the bond cache (tlsph_ell.h):
    the step's particle order (local, then ghost particles, each sorted by
-   their reference position x0c, z then y then x, ties by index), x0c as
+   their reference position x0c along the axes of sort_axes, ties by index), x0c as
    columns, every particle's bonds sorted by partner in that order, the
    sliced-ELLPACK layout with the reverse weights c_ij = V_i w_ij as the
    scalar gather form computes them (LeanBonds::reverse_weight), and which
@@ -302,9 +302,13 @@ void PairTLSPH::build_ell()
     memory->create(ell_soa, (bigint) ell_nperm * ell_ncolumns(), "tlsph:ell_soa");
   }
   const double *x0 = x0c[0];
+  int ax[3];
+  sort_axes(ax);
   const auto before = [&](int a, int b) {
-    for (int d = dim - 1; d >= 0; d--)
+    for (int q = 0; q < dim; q++) {
+      const int d = ax[q];
       if (x0[3 * a + d] != x0[3 * b + d]) return x0[3 * a + d] < x0[3 * b + d];
+    }
     return a < b;
   };
   for (int i = 0; i < nall; i++) ell_perm[i] = i;
@@ -701,10 +705,45 @@ void PairTLSPH::ell_apply_dirty()
   ell_dirty.clear();
 }
 
+/* The axes of the SIMD step's order, slowest first (ax[0 .. dim-1]): z, y,
+   x (x the fastest: a lattice's rows along x become runs of consecutive
+   indices), except that the axis across which this rank has the most ghost
+   partners (a cut between ranks or a periodic boundary) goes first. The
+   ghosts come after the local particles in the step's order; with their axis
+   the slowest, the ghost slab lies beyond the first or the last local rows,
+   and a particle's offsets to its ghost partners are the same along its row
+   (translated chunks keep sharing their blocks). With the cut across the
+   fastest axis instead, every row ends at the ghosts, its offsets to them
+   change from row to row, and the rows' ends are chunks of their own. From
+   the decomposition only (the processor grid, the periodic axes, the
+   sub-domain), so that sort_particles and build_ell agree. */
+void PairTLSPH::sort_axes(int *ax) const
+{
+  int best = -1;
+  double wbest = 0.0;
+  if (comm->layout != Comm::LAYOUT_TILED) {
+    for (int d = dim - 1; d >= 0; d--) {    // (a tie keeps the default order)
+      const int sides = (domain->periodicity[d] || comm->myloc[d] > 0 ? 1 : 0) +
+          (domain->periodicity[d] || comm->myloc[d] < comm->procgrid[d] - 1 ? 1 : 0);
+      double w = sides;    // the ghost slabs' cross-section
+      for (int e = 0; e < dim; e++)
+        if (e != d) w *= domain->subhi[e] - domain->sublo[e];
+      if (w > wbest) {
+        wbest = w;
+        best = d;
+      }
+    }
+  }
+  int q = 0;
+  if (best >= 0) ax[q++] = best;
+  for (int d = dim - 1; d >= 0; d--)
+    if (d != best) ax[q++] = d;
+}
+
 /* The local particles in the SIMD step's order: sorted by their reference
-   position in the image of their current one (x0c of set_reference_images),
-   z, then y, then x, ties by tag: the rows of a lattice become runs of
-   consecutive indices. Called before every exchange (the bond fix's
+   position in the image of their current one (x0c of set_reference_images)
+   along the axes of sort_axes, ties by tag: the rows of a lattice become
+   runs of consecutive indices. Called before every exchange (the bond fix's
    pre_exchange); moves the atoms as LAMMPS's Atom::sort does (AtomVec::copy,
    which carries the fixes' per-atom data, the bonds included). */
 void PairTLSPH::sort_particles()
@@ -724,9 +763,13 @@ void PairTLSPH::sort_particles()
   }
   std::vector<int> permute(nlocal);
   for (int i = 0; i < nlocal; i++) permute[i] = i;
+  int ax[3];
+  sort_axes(ax);
   std::sort(permute.begin(), permute.end(), [&](int a, int b) {
-    for (int d = dim - 1; d >= 0; d--)
+    for (int q = 0; q < dim; q++) {
+      const int d = ax[q];
       if (key[3 * a + d] != key[3 * b + d]) return key[3 * a + d] < key[3 * b + d];
+    }
     return tag[a] < tag[b];
   });
   // permute[I] = J: the I-th atom of the new order is the J-th of the old

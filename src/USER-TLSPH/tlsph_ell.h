@@ -5,7 +5,8 @@
 
    Order and chunks. The step keeps its particle data as columns in its own
    order (EllParticles): local particles sorted by reference position, then
-   the ghosts, sorted the same way, so that a row of a lattice is a run of
+   the ghosts, sorted the same way (PairTLSPH::sort_axes: the axis across
+   which the rank has its ghosts first), so that a row of a lattice is a run of
    consecutive indices. A chunk is a run of up to C consecutive local
    particles whose bonds have the same partner offsets (partner index minus
    own index, slot by slot, bonds sorted by partner): in slot m, lane l
