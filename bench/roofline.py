@@ -134,12 +134,18 @@ def simd_counts(dim, nb, own):
 
 def simd_own_fraction(log):
     """the fraction of particles that stream their own bond blocks, from the
-    SIMD step's line in the log"""
+    SIMD step's line in the log: those with bonds of their own less those
+    that read the blocks of a translated copy (523b015: the same end of
+    another row; a few owners' blocks, read again and again, from the
+    cache, like a pattern)"""
     m = re.search(r"SIMD step \((\w+), up to \d+ lanes\): (\d+) particles in \d+ chunks; (\d+) read "
-                  r"their bonds from \d+ shared pattern\(s\), (\d+) their own", open(log).read())
+                  r"their bonds from \d+ shared pattern\(s\), (\d+) their own"
+                  r"(?: \(\d+ of them alone in a chunk; (\d+) from the blocks of a translated copy\))?",
+                  open(log).read())
     if not m:
         return None, None
-    return m.group(1), int(m.group(4)) / int(m.group(2))
+    shared = int(m.group(5)) if m.group(5) else 0
+    return m.group(1), (int(m.group(4)) - shared) / int(m.group(2))
 
 
 def read_kv(path):
@@ -341,7 +347,8 @@ def main():
                "flops are those of the scalar math plus R = V P Q and the gathered stress term, "
                "each bond's stress term computed at both ends, its pair forces at one); bytes: "
                "only the particles whose chunk has its own bond blocks stream bond data (the "
-               "others read one pattern shared by the whole lattice interior, from the cache), "
+               "others read one pattern shared by the whole lattice interior, or the blocks of a "
+               "translated copy, from the cache; 'own bond blocks' counts the rest), "
                "and every particle streams its own columns and the per-atom arrays the passes "
                "write. Time per pass: the perf samples of the ell_* kernels, the difference of two "
                "run lengths. Bound = max(flops / the kernels' FMA peak, bytes / DRAM bandwidth).",

@@ -417,12 +417,12 @@ void PairTLSPH::build_ell()
     }
     return w;
   };
-  /* how far nsets sets of slot values (set 0 the reference; value(s, m, k)
-     is quantity k of slot m in set s) are apart: the largest difference to
-     set 0, relative to the largest magnitude of that quantity in all sets
-     (the gradient's components together) */
-  const auto spread = [&](int w, int nsets, auto value) {
-    double scale[TLSPH::EllShape<3>::NV] = {0, 0, 0, 0, 0, 0}, worst = 0.0;
+  /* whether nsets sets of slot values (set 0 the reference; value(s, m, k)
+     is quantity k of slot m in set s) agree: the largest difference to set
+     0, relative to the largest magnitude of that quantity in all sets (the
+     gradient's components together), within ELL_SHARE_TOL */
+  const auto agree = [&](int w, int nsets, auto value) {
+    double scale[TLSPH::EllShape<3>::NV] = {0, 0, 0, 0, 0, 0};
     for (int m = 0; m < w; m++)
       for (int k = 0; k < nv; k++)
         for (int q = 0; q < nsets; q++) {
@@ -433,9 +433,9 @@ void PairTLSPH::build_ell()
       for (int k = 0; k < nv; k++)
         for (int q = 1; q < nsets; q++) {
           const double a = value(q, m, k), b = value(0, m, k);
-          if (a != b) worst = std::max(worst, std::fabs(a - b) / scale[k < dim ? 0 : k]);
+          if (a != b && std::fabs(a - b) > ELL_SHARE_TOL * scale[k < dim ? 0 : k]) return false;
         }
-    return worst;
+    return true;
   };
   // pass 1: kinds and patterns (a chunk whose lanes agree within the
   // tolerance, matched against the patterns with the same offsets)
@@ -450,7 +450,7 @@ void PairTLSPH::build_ell()
     ell.pat[c] = -1;
     ell.kind[c] = EllArrays::STENCIL;
     const auto lane = [&](int l, int m, int k) { return sv[(size_t) nv * C * m + C * k + l]; };
-    if (ell.n[c] < 2 || spread(w, ell.n[c], lane) > ELL_SHARE_TOL) {
+    if (ell.n[c] < 2 || !agree(w, ell.n[c], lane)) {
       nblock += w;
       continue;
     }
@@ -469,7 +469,7 @@ void PairTLSPH::build_ell()
       const auto set = [&](int which, int m, int k) {
         return which == 0 ? pv[(size_t) nv * m + k] : val[(size_t) nv * m + k];
       };
-      if (spread(w, 2, set) <= ELL_SHARE_TOL) {
+      if (agree(w, 2, set)) {
         found = q;
         break;
       }
@@ -511,22 +511,13 @@ void PairTLSPH::build_ell()
       auto &cands = owners[key];
       int found = -1;
       for (int o : cands) {
-        // the largest difference of a value, lane by lane, relative to the
-        // largest magnitude of that quantity in the two chunks (as spread)
+        // lane by lane: "slot" s = C m + l of the two chunks
         const double *ov = ell.v + (bigint) nv * C * ell.start[o];
-        const size_t nval = (size_t) nv * C * w;
-        double scale[TLSPH::EllShape<3>::NV] = {0, 0, 0, 0, 0, 0}, worst = 0.0;
-        for (size_t at = 0; at < nval; at++) {
-          const int k = (int) ((at / C) % nv);
-          double &sc = scale[k < dim ? 0 : k];
-          sc = std::max(sc, std::max(std::fabs(sv[at]), std::fabs(ov[at])));
-        }
-        for (size_t at = 0; at < nval && worst <= ELL_SHARE_TOL; at++)
-          if (sv[at] != ov[at]) {
-            const int k = (int) ((at / C) % nv);
-            worst = std::max(worst, std::fabs(sv[at] - ov[at]) / scale[k < dim ? 0 : k]);
-          }
-        if (worst <= ELL_SHARE_TOL) {
+        const auto lanes = [&](int which, int s, int k) {
+          const size_t at = (size_t) nv * C * (s / C) + (size_t) C * k + s % C;
+          return which == 0 ? ov[at] : sv[at];
+        };
+        if (agree(C * w, 2, lanes)) {
           found = o;
           break;
         }
