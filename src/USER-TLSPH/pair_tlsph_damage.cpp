@@ -330,7 +330,8 @@ void PairTLSPHDamage::init_style()
       if (mat[t].rho > 0.0 && (int) strength.size() > t && strength[t] != strength[1])
         error->all(FLERR, "pair tlsph/damage: 'criterion tip' needs one material (all types "
                           "alike): type {} has strength {}, type 1 {}", t, strength[t], strength[1]);
-    crack->init(plane_stress ? m.E : m.E / (1.0 - m.nu * m.nu), Gc[1],
+    crack->init(plane_stress ? m.E : m.E / (1.0 - m.nu * m.nu), m.mu,
+                plane_stress ? (3.0 - m.nu) / (1.0 + m.nu) : 3.0 - 4.0 * m.nu, Gc[1],
                 sqrt(m.mu / m.rho) * (0.862 + 1.14 * m.nu) / (1.0 + m.nu),
                 (int) strength.size() > 1 ? strength[1] : 0.0);
   } else {

@@ -3,7 +3,8 @@
    (pair_style tlsph/damage criterion tip; PairTLSPHDamage::grow_tips):
    the stress intensity factors by displacement correlation and the
    maximum-tangential-stress rule (Erdogan & Sih 1963), the energy release
-   rate by the domain J-integral, the speed law (Freund) and the branching
+   rate by the domain J-integral, the mode mix by the interaction integral,
+   the speed law (Freund) and the branching
    rule (Yoffe). Plain C++, tested without LAMMPS
    (unittest/physics/test_crack.cpp) against the Williams near-tip fields.
    The crack-tips class (tlsph_crack_tips.h) applies them in a run.
@@ -186,6 +187,101 @@ inline CrackK k_from_j(double J, const CrackK &kd, double Eprime)
   if (!(J > 0.0) || !(n2 > 0.0)) return CrackK{0.0, 0.0};
   const double s = std::sqrt(Eprime * J / n2);
   return CrackK{s * kd.KI, s * kd.KII};
+}
+
+/* The mode mix by the interaction integral (Yau, Wang & Corten 1980; the
+   domain form of Moran & Shih 1987, as for J): the J-integral of the sum
+   of the actual field and an auxiliary one, less the J of each, is
+     I = int_A [P_ij Ha_i1 + Pa_ij H_i1 - Pa_ij H_ij delta_1j] q_,j dA
+   in the crack's frame (x1 along e, x2 to its left), H = F - I and P the
+   actual displacement gradient and stress (small strain: P for sigma), Ha
+   and Pa the auxiliary Williams field of mode I or II with K = 1. In
+   linear elasticity I = 2 K / E' of the actual field's K of that mode (a
+   crack at rest; the inertia term left out as in J). Only the in-plane
+   components enter: the auxiliary field has no u_3, and q_,3 = 0 (a disc
+   in 2D, a cylinder through the thickness in 3D).
+
+   williams_aux: the auxiliary field at (r, theta) in the crack's frame
+   (theta from e, +-pi on the faces), mode 0 (I) or 1 (II), K = 1, plane
+   strain (kappa = 3 - 4 nu) or stress (kappa = (3 - nu) / (1 + nu)), mu
+   the shear modulus: its displacement gradient Ha[2][2] (Ha[i][j] =
+   du_i/dx_j) and stress Pa[2][2]. */
+inline void williams_aux(int mode, double r, double th, double mu, double kappa, double Ha[2][2],
+                         double Pa[2][2])
+{
+  const double c = std::cos(th), s = std::sin(th), c2 = std::cos(0.5 * th), s2 = std::sin(0.5 * th);
+  const double c32 = std::cos(1.5 * th), s32 = std::sin(1.5 * th);
+  // u = sqrt(r) f(theta) / (2 mu sqrt(2 pi)); f and df/dtheta
+  double f[2], g[2];
+  if (mode == 0) {
+    f[0] = (kappa - c) * c2;
+    f[1] = (kappa - c) * s2;
+    g[0] = s * c2 - 0.5 * (kappa - c) * s2;
+    g[1] = s * s2 + 0.5 * (kappa - c) * c2;
+  } else {
+    f[0] = (kappa + 2.0 + c) * s2;
+    f[1] = -(kappa - 2.0 + c) * c2;
+    g[0] = 0.5 * (kappa + 2.0 + c) * c2 - s * s2;
+    g[1] = 0.5 * (kappa - 2.0 + c) * s2 + s * c2;
+  }
+  // d/dx1 = cos d/dr - sin / r d/dtheta, d/dx2 = sin d/dr + cos / r d/dtheta
+  const double a = 1.0 / (2.0 * mu * std::sqrt(2.0 * M_PI * r));
+  for (int i = 0; i < 2; i++) {
+    Ha[i][0] = a * (0.5 * c * f[i] - s * g[i]);
+    Ha[i][1] = a * (0.5 * s * f[i] + c * g[i]);
+  }
+  const double b = 1.0 / std::sqrt(2.0 * M_PI * r);
+  if (mode == 0) {
+    Pa[0][0] = b * c2 * (1.0 - s2 * s32);
+    Pa[1][1] = b * c2 * (1.0 + s2 * s32);
+    Pa[0][1] = Pa[1][0] = b * c2 * s2 * c32;
+  } else {
+    Pa[0][0] = -b * s2 * (2.0 + c2 * c32);
+    Pa[1][1] = b * s2 * c2 * c32;
+    Pa[0][1] = Pa[1][0] = b * c2 * (1.0 - s2 * s32);
+  }
+}
+
+/* one particle's integrands of I for modes I and II (out[0], out[1]): F, P
+   3 x 3 row-major (reference frame), X its reference position less the
+   tip's, e the crack's unit direction, gq = grad q (3 components each); mu,
+   kappa as williams_aux. A particle at the tip (r = 0) adds nothing. */
+inline void interaction_integrand(const double *F, const double *P, const double *X,
+                                  const double *e, const double *gq, double mu, double kappa,
+                                  double *out)
+{
+  out[0] = out[1] = 0.0;
+  // the crack's frame: rows e and n = e turned by +90 deg
+  const double R[2][2] = {{e[0], e[1]}, {-e[1], e[0]}};
+  const double x1 = R[0][0] * X[0] + R[0][1] * X[1], x2 = R[1][0] * X[0] + R[1][1] * X[1];
+  const double r = std::hypot(x1, x2);
+  if (!(r > 0.0)) return;
+  const double th = std::atan2(x2, x1);
+  double H[2][2], S[2][2], q[2];
+  for (int i = 0; i < 2; i++) {
+    q[i] = R[i][0] * gq[0] + R[i][1] * gq[1];
+    for (int j = 0; j < 2; j++) {
+      double h = 0.0, p = 0.0;
+      for (int k = 0; k < 2; k++)
+        for (int l = 0; l < 2; l++) {
+          h += R[i][k] * (F[3 * k + l] - (k == l ? 1.0 : 0.0)) * R[j][l];
+          p += R[i][k] * P[3 * k + l] * R[j][l];
+        }
+      H[i][j] = h;
+      S[i][j] = p;
+    }
+  }
+  for (int mode = 0; mode < 2; mode++) {
+    double Ha[2][2], Pa[2][2];
+    williams_aux(mode, r, th, mu, kappa, Ha, Pa);
+    double w12 = 0.0, v = 0.0;
+    for (int i = 0; i < 2; i++)
+      for (int j = 0; j < 2; j++) {
+        w12 += Pa[i][j] * H[i][j];
+        v += (S[i][j] * Ha[i][0] + Pa[i][j] * H[i][0]) * q[j];
+      }
+    out[mode] = v - w12 * q[0];
+  }
 }
 
 /* Merging: the first point where a tip's move P -> Q meets the segment

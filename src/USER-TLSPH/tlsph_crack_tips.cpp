@@ -57,7 +57,7 @@ void TLSPHCrackTips::defaults()
 }
 
 /* the tip keywords of pair_style tlsph/damage: tipdir faces|hoop,
-   kfit tip|offset|j, jring r1 r2, tipseg L, branch yoffe|A */
+   kfit tip|offset|j|interaction, jring r1 r2, tipseg L, branch yoffe|A */
 int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
 {
   const std::string key = arg[iarg];
@@ -75,9 +75,10 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
     if (strcmp(arg[iarg + 1], "tip") == 0) kfit = 0;
     else if (strcmp(arg[iarg + 1], "offset") == 0) kfit = 1;
     else if (strcmp(arg[iarg + 1], "j") == 0) kfit = 2;
+    else if (strcmp(arg[iarg + 1], "interaction") == 0) kfit = 3;
     else
-      error->all(FLERR, "pair_style tlsph/damage: kfit must be 'tip', 'offset' or 'j', got '{}'",
-                 arg[iarg + 1]);
+      error->all(FLERR, "pair_style tlsph/damage: kfit must be 'tip', 'offset', 'j' or "
+                        "'interaction', got '{}'", arg[iarg + 1]);
     return 2;
   }
   if (key == "jring") {
@@ -220,9 +221,11 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   return tipmode;
 }
 
-void TLSPHCrackTips::init(double Ep, double G_c, double c_R, double strength)
+void TLSPHCrackTips::init(double Ep, double shear, double kap, double G_c, double c_R, double strength)
 {
   Eprime = Ep;
+  mu = shear;
+  kappa = kap;
   Gc = G_c;
   cR = c_R;
   sigma_t = strength;
@@ -386,10 +389,12 @@ void TLSPHCrackTips::find_tips()
    acceleration, a history that neither migrates with the atoms nor is in a
    restart file, so the same run on other ranks or restarted would differ. */
 void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector<double> &dir,
-                                 std::vector<double> &J)
+                                 std::vector<double> &J, std::vector<double> *Imix)
 {
   const int nt = live.size();
   J.assign(nt, 0.0);
+  // kfit interaction: per tip J, then the interaction integrals of modes I and II
+  const int nw = Imix ? 3 : 1;
   double **x = atom->x, **v = atom->v;
   const double *vfrac = atom->vfrac, *rmass = atom->rmass;
   const double r1 = jr1 * pair->h, r2 = jr2 * pair->h;
@@ -415,7 +420,7 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
     }
   }
   MPI_Allreduce(pm.data(), pmall.data(), 4 * nt, MPI_DOUBLE, MPI_SUM, world);
-  std::vector<double> mine(nt, 0.0);
+  std::vector<double> mine(nw * nt, 0.0), all(nw * nt, 0.0);
   for (int a = 0; a < nt; a++) {
     const CrackTip &tp = list[live[a]];
     const auto &T = tp.path.back();
@@ -437,11 +442,23 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
       const double W = pair->pk1_stress(i, F, P);
       const double rho0 = rmass[i] / vfrac[i];
       const double vr[3] = {v[i][0] - vm[0], v[i][1] - vm[1], v[i][2] - vm[2]};
-      mine[a] += vfrac[i] * TLSPH::j_integrand(F, P, W, rho0, vr, e, gq);
+      mine[nw * a] += vfrac[i] * TLSPH::j_integrand(F, P, W, rho0, vr, e, gq);
+      if (Imix) {
+        const double X[3] = {ex, ey, 0.0};
+        double o[2];
+        TLSPH::interaction_integrand(F, P, X, e, gq, mu, kappa, o);
+        mine[nw * a + 1] += vfrac[i] * o[0];
+        mine[nw * a + 2] += vfrac[i] * o[1];
+      }
     }
   }
-  MPI_Allreduce(mine.data(), J.data(), nt, MPI_DOUBLE, MPI_SUM, world);
-  for (double &j : J) j /= depth;
+  MPI_Allreduce(mine.data(), all.data(), nw * nt, MPI_DOUBLE, MPI_SUM, world);
+  for (int a = 0; a < nt; a++) J[a] = all[nw * a] / depth;
+  if (Imix) {
+    Imix->assign(2 * nt, 0.0);
+    for (int a = 0; a < nt; a++)
+      for (int m = 0; m < 2; m++) (*Imix)[2 * a + m] = all[nw * a + 1 + m] / depth;
+  }
 }
 
 /* after each deformation pass: which atom each local index held, so that
@@ -614,8 +631,8 @@ void TLSPHCrackTips::grow()
   // crack's energy release rate, from which the kink rule (Erdogan and Sih)
   // takes the kinked tip's (J along the new segment would add the unknown
   // term W (m . e) on the parent's faces, which are not parallel to it)
-  std::vector<double> Jt(nt, 0.0);
-  if (kfit == 2) {
+  std::vector<double> Jt(nt, 0.0), It(2 * nt, 0.0);
+  if (kfit >= 2) {
     std::vector<int> live;
     std::vector<double> dir;
     for (int a = 0; a < nt; a++) {
@@ -625,9 +642,13 @@ void TLSPHCrackTips::grow()
       dir.push_back(frs[2 * a] / fl);
       dir.push_back(frs[2 * a + 1] / fl);
     }
-    std::vector<double> Jl;
-    j_integrals(live, dir, Jl);
-    for (size_t k = 0; k < live.size(); k++) Jt[live[k]] = Jl[k];
+    std::vector<double> Jl, Il;
+    j_integrals(live, dir, Jl, kfit == 3 ? &Il : nullptr);
+    for (size_t k = 0; k < live.size(); k++) {
+      Jt[live[k]] = Jl[k];
+      if (kfit == 3)
+        for (int m = 0; m < 2; m++) It[2 * live[k] + m] = Il[2 * k + m];
+    }
   }
 
   const double dt = update->dt;
@@ -656,11 +677,16 @@ void TLSPHCrackTips::grow()
     if (cnt == 0) continue;
     // K_I, K_II (displacement correlation), the kink angle and the
     // equivalent K of the maximum tangential stress (tlsph_crack.h)
-    // (kfit j: their size from J, their ratio from the correlation)
+    // (kfit j: their size from J, their ratio from the correlation; kfit
+    // interaction: their size from J, their ratio from the interaction
+    // integrals, I_I = 2 K_I / E' and I_II = 2 K_II / E', faces that
+    // overlap (I_I < 0) giving no mode I as in the correlation)
     const TLSPH::CrackK K = kfit == 1
         ? TLSPH::displacement_correlation_offset(cnt, rr, jn, jt, Eprime)
         : kfit == 2
         ? TLSPH::k_from_j(Jt[a], TLSPH::displacement_correlation(cnt, rr, jn, jt, Eprime), Eprime)
+        : kfit == 3
+        ? TLSPH::k_from_j(Jt[a], TLSPH::CrackK{It[2 * a] > 0.0 ? It[2 * a] : 0.0, It[2 * a + 1]}, Eprime)
         : TLSPH::displacement_correlation(cnt, rr, jn, jt, Eprime);
     const double KI = K.KI, KII = K.KII;
     const double th = TLSPH::mts_kink_angle(KI, KII);
@@ -924,7 +950,7 @@ void TLSPHCrackTips::nucleate()
   const double h = pair->h;
   if (!depth_ready) measure_depth();
   const double reach = std::max(seg > 0.0 ? seg * h : (p_sample + 1.5 + p_disc) * h,
-                                kfit == 2 ? jr2 * h : 0.0);
+                                kfit >= 2 ? jr2 * h : 0.0);
   const double L = TLSPH::nucleation_half_length(Eprime, Gc, sigma_t, reach);
   // the cracks there are: pre-crack traces and the tips' paths
   std::vector<std::array<double, 4>> segs;

@@ -55,7 +55,8 @@ class TLSPHCrackTips : protected Pointers {
   int read_restart(FILE *fp);    // returns tipmode
   // from the pair's init_style: the material's E', G_c, Rayleigh speed and
   // tensile strength (0: no nucleation)
-  void init(double Eprime, double Gc, double cR, double strength);
+  // E', the shear modulus and kappa (3 - 4 nu, plane stress (3 - nu) / (1 + nu)), G_c, c_R, sigma_t
+  void init(double Eprime, double mu, double kappa, double Gc, double cR, double strength);
   // every step before the deformation pass: the tips found (first call),
   // measured, turned, grown and split
   void grow();
@@ -75,8 +76,9 @@ class TLSPHCrackTips : protected Pointers {
   // settings (the pair_style keywords)
   int tipdir_hoop;  // tipdir: 0 kink angle from K_I, K_II, 1 largest hoop stress
   int kfit;         // K: 0 fit anchored at the path's end, 1 with the tip's offset fitted,
-                    // 2 size from the domain J-integral (ratio: fit 0)
-  double jr1, jr2;  // kfit j: the J domain's ring, q = 1 inside r1, 0 beyond r2 [h]
+                    // 2 size from the domain J-integral (ratio: fit 0), 3 size from J,
+                    // ratio from the interaction integrals over the same ring
+  double jr1, jr2;  // kfit j, interaction: the J domain's ring, q = 1 inside r1, 0 beyond r2 [h]
   double seg;       // segment length in h (0: the sampling reach)
   double branch;    // half angle of a branching [rad] (0: never; < 0: 'yoffe')
   // tipparam: the tip model's numerical constants (scanned in bench/tipconst.md)
@@ -91,6 +93,7 @@ class TLSPHCrackTips : protected Pointers {
   std::vector<CrackTip> list;
   int ready, depth_ready;
   double Eprime, Gc, cR, depth;
+  double mu = 0.0, kappa = 0.0;    // the interaction integral's auxiliary fields (kfit interaction)
   double sigma_t = 0.0;    // tensile strength: cracks nucleate where the stress reaches it (0: never)
   void measure_depth();
 
@@ -109,7 +112,9 @@ class TLSPHCrackTips : protected Pointers {
   double first_crossing(int a, const double *P, const double *Q);
   void stress_now(int i, double *sig);
   std::vector<tagint> ftag;    // atom ID of each local index at the last deformation pass
-  void j_integrals(const std::vector<int> &live, const std::vector<double> &dir, std::vector<double> &J);
+  // Imix: also the interaction integrals of modes I and II (2 per tip)
+  void j_integrals(const std::vector<int> &live, const std::vector<double> &dir, std::vector<double> &J,
+                   std::vector<double> *Imix = nullptr);
 
   void find_tips();
 };

@@ -204,19 +204,21 @@ TEST(CrackTip, OffsetFitRecoversKOfAShiftedTip)
 
 namespace {
 
-/* The domain J-integral of the Williams field (modes I and II, plane
-   strain, small strain) with the crack along direction beta, on a lattice
-   of spacing d over the disc of radius r2 about the tip: each lattice point
-   a "particle" of volume d^2 (unit depth), its displacement gradient by
-   central differences of williams_u, its stress by Hooke's law. */
-double williams_j(double KI, double KII, double beta, double r1, double r2, double d)
+/* The Williams field (modes I and II, plane strain, small strain) with the
+   crack along direction beta, on a lattice of spacing d over the disc of
+   radius r2 about the tip: each lattice point a "particle" of volume d^2
+   (unit depth), its displacement gradient by central differences of
+   williams_u, its stress by Hooke's law; visit(F, sigma, W, X, e, gq) for
+   each (X the point less the tip, e the crack's direction, gq the gradient
+   of the ring weight q, 1 inside r1, 0 beyond r2), in the global frame. */
+const double WE = 32e9, WNU = 0.2, WMU = WE / (2 * (1 + WNU)), WKAPPA = 3 - 4 * WNU;
+template <class Visit>
+void williams_lattice(double KI, double KII, double beta, double r1, double r2, double d, Visit visit)
 {
-  const double E = 32e9, nu = 0.2, mu = E / (2 * (1 + nu)), lam = 2 * mu * nu / (1 - 2 * nu);
-  const double kappa = 3 - 4 * nu;
+  const double mu = WMU, lam = 2 * mu * WNU / (1 - 2 * WNU), kappa = WKAPPA;
   const double cb = std::cos(beta), sb = std::sin(beta);
   const double e[3] = {cb, sb, 0.0};
   const int n = (int) std::ceil(r2 / d) + 1;
-  double J = 0.0;
   for (int a = -n; a < n; a++)
     for (int b = -n; b < n; b++) {
       // the lattice in the crack's frame (points off the crack line y = 0)
@@ -253,11 +255,37 @@ double williams_j(double KI, double KII, double beta, double r1, double r2, doub
       for (int k = 0; k < 9; k++) F[k] = H[k] + ((k % 4) == 0 ? 1.0 : 0.0);
       double dq;
       TLSPH::ring_weight(r, r1, r2, &dq);
-      const double gq[3] = {dq * (cb * xl - sb * yl) / r, dq * (sb * xl + cb * yl) / r, 0.0};
-      const double v0[3] = {0, 0, 0};
-      J += d * d * TLSPH::j_integrand(F, sig, W, 2450.0, v0, e, gq);
+      const double X[3] = {cb * xl - sb * yl, sb * xl + cb * yl, 0.0};
+      const double gq[3] = {dq * X[0] / r, dq * X[1] / r, 0.0};
+      visit(F, sig, W, X, e, gq);
     }
+}
+
+// the domain J-integral of that field (lattice sum)
+double williams_j(double KI, double KII, double beta, double r1, double r2, double d)
+{
+  double J = 0.0;
+  const double v0[3] = {0, 0, 0};
+  williams_lattice(KI, KII, beta, r1, r2, d,
+                   [&](const double *F, const double *sig, double W, const double *, const double *e,
+                       const double *gq) { J += d * d * TLSPH::j_integrand(F, sig, W, 2450.0, v0, e, gq); });
   return J;
+}
+
+// K_I and K_II of that field by the interaction integral (lattice sum): E' I / 2
+TLSPH::CrackK williams_interaction(double KI, double KII, double beta, double r1, double r2, double d)
+{
+  double I[2] = {0.0, 0.0};
+  williams_lattice(KI, KII, beta, r1, r2, d,
+                   [&](const double *F, const double *sig, double, const double *X, const double *e,
+                       const double *gq) {
+                     double o[2];
+                     TLSPH::interaction_integrand(F, sig, X, e, gq, WMU, WKAPPA, o);
+                     I[0] += d * d * o[0];
+                     I[1] += d * d * o[1];
+                   });
+  const double Eprime = WE / (1 - WNU * WNU);
+  return TLSPH::CrackK{0.5 * Eprime * I[0], 0.5 * Eprime * I[1]};
 }
 
 }    // namespace
@@ -283,6 +311,72 @@ TEST(CrackTip, DomainJIntegralOfTheWilliamsField)
         }
         // another ring, the same J (path independence)
         EXPECT_NEAR(williams_j(KI, KII, beta, 0.1 * r2, 0.7 * r2, r2 / 160) / Jx, 1.0, 0.005);
+      }
+}
+
+// the auxiliary fields of the interaction integral: their displacement
+// gradient is that of williams_u (central differences), and their stress is
+// Hooke's law of it (plane strain and plane stress), at points all around
+// the tip
+TEST(CrackTip, InteractionAuxiliaryFieldsAreWilliams)
+{
+  const double mu = 13.3e9;
+  for (double nu : {0.2, 0.35})
+    for (int pstress = 0; pstress < 2; pstress++) {
+      const double kappa = pstress ? (3 - nu) / (1 + nu) : 3 - 4 * nu;
+      const double lam = pstress ? 2 * mu * nu / (1 - nu) : 2 * mu * nu / (1 - 2 * nu);
+      for (int mode = 0; mode < 2; mode++)
+        for (double th : {-3.0, -2.1, -0.9, 0.0, 0.4, 1.7, 2.9})
+          for (double r : {1e-4, 3e-3}) {
+            double Ha[2][2], Pa[2][2];
+            TLSPH::williams_aux(mode, r, th, mu, kappa, Ha, Pa);
+            const double x = r * std::cos(th), y = r * std::sin(th), s = 1e-6 * r;
+            double scale = 0.0;
+            for (int i = 0; i < 2; i++)
+              for (int j = 0; j < 2; j++) scale = std::max(scale, std::fabs(Ha[i][j]));
+            for (int j = 0; j < 2; j++) {
+              double up[2], um[2];
+              const double xp = x + (j == 0 ? s : 0), yp = y + (j == 1 ? s : 0);
+              const double xm = x - (j == 0 ? s : 0), ym = y - (j == 1 ? s : 0);
+              williams_u(mode == 0, mode == 1, mu, kappa, std::hypot(xp, yp), std::atan2(yp, xp), up);
+              williams_u(mode == 0, mode == 1, mu, kappa, std::hypot(xm, ym), std::atan2(ym, xm), um);
+              for (int i = 0; i < 2; i++)
+                EXPECT_NEAR(Ha[i][j], (up[i] - um[i]) / (2 * s), 1e-6 * scale)
+                    << "mode " << mode << " theta " << th << " i " << i << " j " << j;
+            }
+            const double tr = Ha[0][0] + Ha[1][1];
+            for (int i = 0; i < 2; i++)
+              for (int j = 0; j < 2; j++) {
+                const double sig = mu * (Ha[i][j] + Ha[j][i]) + (i == j ? lam * tr : 0.0);
+                EXPECT_NEAR(Pa[i][j], sig, 1e-10 / std::sqrt(r))
+                    << "mode " << mode << " nu " << nu << " plane stress " << pstress << " theta " << th;
+              }
+          }
+    }
+}
+
+// the interaction integral of the Williams field gives K_I and K_II, signs
+// included, whatever the crack's direction and the ring; the lattice sum
+// converges to them as the lattice is refined
+TEST(CrackTip, InteractionIntegralOfTheWilliamsField)
+{
+  const double r2 = 4e-3;
+  for (double beta : {0.0, 0.7, -2.2})
+    for (double KII : {0.0, 0.6e6, -0.4e6})
+      for (double KI : {1.0e6, 0.3e6, 0.0}) {
+        if (KI == 0.0 && KII == 0.0) continue;
+        const double Kn = std::hypot(KI, KII);
+        double err_prev = 1.0;
+        for (double d : {r2 / 40, r2 / 160}) {
+          const TLSPH::CrackK k = williams_interaction(KI, KII, beta, 0.4 * r2, r2, d);
+          const double err = std::max(std::fabs(k.KI - KI), std::fabs(k.KII - KII)) / Kn;
+          EXPECT_LT(err, d < r2 / 100 ? 0.005 : 0.05) << "beta " << beta << " KI " << KI << " KII " << KII;
+          EXPECT_LT(err, err_prev);
+          err_prev = err;
+        }
+        const TLSPH::CrackK k = williams_interaction(KI, KII, beta, 0.1 * r2, 0.7 * r2, r2 / 160);
+        EXPECT_NEAR(k.KI / Kn, KI / Kn, 0.005);
+        EXPECT_NEAR(k.KII / Kn, KII / Kn, 0.005);
       }
 }
 
