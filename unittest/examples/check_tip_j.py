@@ -1,7 +1,7 @@
 """Crack-tip tracking with K from the domain J-integral (pair_style
 tlsph/damage criterion tip kfit j), verified against theory (issue 26,
 "each ingredient verified"); ctest examples.tip-j.kcheck,
-examples.tip-j.speedlaw, examples.tip-j.kink, examples.tip-j.kalthoff and
+examples.tip-j.mixed, examples.tip-j.speedlaw, examples.tip-j.kink, examples.tip-j.kalthoff and
 examples.tip-j.merge.
 
 --case kcheck: bench/in.kcheck, a central crack 2a = 10 mm in an 80 x 80 mm
@@ -16,6 +16,13 @@ examples.tip-j.merge.
       and +3.8 % in mode I, +17.8 % and +8.1 % in mode II at 1 and 0.5 mm);
     * at 0.5 mm (a / h = 7.5) K is within 10 % in both modes;
     * both tips alike, the other mode's K below 1e-3 of K (symmetry).
+--case mixed: the same crack under remote tension and remote shear together
+  (-var mode mixed: K_I = K_II = the reference, by superposition) with kfit
+  interaction (the mode ratio from the interaction integrals) at dx = 1 and
+  0.5 mm. Checks: the error of K_II / K_I falls at least as dx^0.7, it is
+  within 10 % at 0.5 mm (the kcheck case's tolerance for K), both tips alike
+  (bench/kcheck-mixed.md, 700ccf0: 1.048 and 1.024; kfit j's ratio from the
+  faces' opening 1.178 and 1.196, not falling).
 --case speedlaw: the pure-shear strip of bench/in.toughness at dx = 0.333 mm,
   pre-strained to G0 = 1.5 and 2 G_c with the grips fixed: the crack runs
   steadily at v = c_R (1 - G_c / G0) (the law the tips apply, with the
@@ -74,7 +81,7 @@ examples.tip-j.merge.
   5.6e4 of the lateral stress), a limit of kfit j (doc/pair_tlsph_damage.rst)
   that this case does not test.
 
-    check_tip_j.py --lmp LMP --bench DIR --workdir DIR --case kcheck|speedlaw|kink|kalthoff|merge
+    check_tip_j.py --lmp LMP --bench DIR --workdir DIR --case kcheck|mixed|speedlaw|kink|kalthoff|merge
 Prints PASSED or FAILED (ctest matches PASSED) and exits 0 / 1.
 """
 
@@ -107,6 +114,31 @@ def last_thermo(log):
                     break
                 rows.append([float(v) for v in c])
     return rows[-1]
+
+
+def mixed(a):
+    res = {}
+    for dx, chunk in (("0.001", 1000), ("0.0005", 2000)):
+        log = os.path.join(a.workdir, f"k-mixed-{dx}.log")
+        cmd = [os.path.abspath(a.lmp), "-in", os.path.join(a.bench, "in.kcheck"), "-log", log,
+               "-screen", "none", "-var", "dx", dx, "-var", "mode", "mixed", "-var", "kfit", "interaction",
+               "-var", "chunk", str(chunk), "-var", "nchunk", "8"]
+        if not run_lammps(cmd, cwd=a.workdir):
+            return 1
+        r = last_thermo(log)
+        res[dx] = r[2:6]    # KI1 KII1 KI2 KII2
+        print(f"dx {dx}: K_I {r[2] / KREF:.4f}, K_II {r[3] / KREF:.4f} of the reference, "
+              f"K_II / K_I {r[3] / r[2]:.4f}")
+    e1 = abs(res["0.001"][1] / res["0.001"][0] - 1)
+    e05 = abs(res["0.0005"][1] / res["0.0005"][0] - 1)
+    checks = [(f"K_II / K_I: |error| falls at least as dx^0.7 ({e1:.2%} at 1 mm, {e05:.2%} at 0.5 mm, "
+               f"ratio {e05 / e1:.3f} <= {0.5 ** 0.7:.3f})", e05 <= 0.5 ** 0.7 * e1),
+              (f"K_II / K_I: |error| {e05:.2%} at 0.5 mm within 10 %", e05 < 0.10)]
+    for dx in ("0.001", "0.0005"):
+        k = res[dx]
+        checks.append((f"dx {dx}: both tips alike", abs(k[0] - k[2]) <= 1e-6 * abs(k[0]) and
+                       abs(k[1] - k[3]) <= 1e-6 * abs(k[1])))
+    return verdict(checks)
 
 
 def kcheck(a):
@@ -287,10 +319,10 @@ def main():
     ap.add_argument("--lmp", required=True)
     ap.add_argument("--bench", required=True)
     ap.add_argument("--workdir", required=True)
-    ap.add_argument("--case", required=True, choices=["kcheck", "speedlaw", "kink", "kalthoff", "merge"])
+    ap.add_argument("--case", required=True, choices=["kcheck", "mixed", "speedlaw", "kink", "kalthoff", "merge"])
     a = ap.parse_args()
     os.makedirs(a.workdir, exist_ok=True)
-    return {"kcheck": kcheck, "speedlaw": speedlaw, "kink": kink, "kalthoff": kalthoff,
+    return {"kcheck": kcheck, "mixed": mixed, "speedlaw": speedlaw, "kink": kink, "kalthoff": kalthoff,
             "merge": merge}[a.case](a)
 
 
