@@ -141,8 +141,8 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
 
 /* ----------------------------------------------------------------------
    restart: the settings, then every tip with its path (identical on all
-   ranks). tipdir and kfit share one value (files written before kfit read
-   as kfit tip); tipmode + 2 marks the layout with the J ring after the six
+   ranks). tipdir and kfit share one value, tipdir + 2 kfit, 0 to 7 (files
+   written before kfit read as kfit tip); tipmode + 2 marks the layout with the J ring after the six
    (files written before it have tipmode 0 or 1 there and the default ring)
 ------------------------------------------------------------------------- */
 
@@ -171,7 +171,7 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   const int extra = (w[0] >= 4.0) ? 7 : (w[0] >= 2.0) ? 2 : 0;
   if (extra == 7) w[0] -= 4.0;
   else if (extra == 2) w[0] -= 2.0;
-  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 5.0 && w[1] == std::floor(w[1])) &&
+  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 7.0 && w[1] == std::floor(w[1])) &&
         w[2] >= 0.0 && w[3] < 2.0 && (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 &&
         w[5] == std::floor(w[5]) && w[5] < 1.0e7))
     error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "

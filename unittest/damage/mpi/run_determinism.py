@@ -158,7 +158,7 @@ def main():
                          "'branch yoffe'; the restarted runs take it, and the tips, from the "
                          "restart file)")
     ap.add_argument("--kfit", default="tip",
-                    help="with --crit tip: pair_style tlsph/damage kfit (tip, offset or j)")
+                    help="with --crit tip: pair_style tlsph/damage kfit (tip, offset, j or interaction)")
     ap.add_argument("--gc", type=float, default=3.0, help="the glass's fracture energy [J/m^2]")
     ap.add_argument("--strength", type=float, default=0.0,
                     help="with --crit tip: pair_coeff strength [Pa] (crack nucleation; 0: none)")
