@@ -664,7 +664,9 @@ void PairTLSPHDamage::simd_breaks(const int *list, int n)
 }
 
 /* ----------------------------------------------------------------------
-   every step, before the deformation pass: the pre-cracks once
+   every step, before the deformation pass: the pre-cracks once, and the
+   bonds of the cracks nucleated at the end of the last step ('criterion
+   tip'; its tips grow after the pass, in after_deformation)
 ------------------------------------------------------------------------- */
 
 void PairTLSPHDamage::update_bonds()
@@ -678,7 +680,7 @@ void PairTLSPHDamage::update_bonds()
       for (int i = 0; i < atom->nlocal; i++) bonds->frozen[i][0] = 0.0;
     build_bond_cache();
   }
-  if (tipmode) crack->grow();
+  if (tipmode) crack->cut_newborn();
 }
 
 /* ----------------------------------------------------------------------
@@ -690,7 +692,16 @@ void PairTLSPHDamage::update_bonds()
 void PairTLSPHDamage::after_deformation()
 {
   if (tipmode) {
-    crack->note_pass();
+    // the tips, measured on this pass's fields, grow and cut bonds: pass (1)
+    // again for the particles that lost bonds (and, SIMD step, their columns)
+    tip_cut.clear();
+    crack->grow();
+    if (!tip_cut.empty()) {
+      std::sort(tip_cut.begin(), tip_cut.end());
+      tip_cut.erase(std::unique(tip_cut.begin(), tip_cut.end()), tip_cut.end());
+      if (simd_isa != SIMD_NO) simd_breaks(tip_cut.data(), (int) tip_cut.size());
+      else deform_and_break_pass(tip_cut.data(), (int) tip_cut.size());
+    }
     crack->nucleate();
   }
   const int nlocal = atom->nlocal;
@@ -867,6 +878,7 @@ void PairTLSPHDamage::cut_path(const double *A, const double *B)
       nbond[i] = n;
       ell_mark(i);
       if (rebuild) recorrect(i);
+      tip_cut.push_back(i);
     }
   }
 }

@@ -107,6 +107,7 @@ class PairTLSPHDamage : public PairTLSPH {
   int tipmode;
   TLSPHCrackTips *crack;
   void cut_path(const double *A, const double *B);
+  std::vector<int> tip_cut;    // local particles whose bonds cut_path cut (after_deformation)
 
   int nmax_d;
   double *phi, *phis, *alphas;

@@ -379,10 +379,12 @@ void TLSPHCrackTips::find_tips()
    faces its K_I / K_II are measured on, below), over the particles whose
    reference position lies within jr2 h of
    the tip (a cylinder through the thickness in 3D), per unit depth, all
-   ranks. Each particle's F comes from its intact bonds and the positions
-   now (the F of the last deformation pass is a step old and, at a neighbor
-   build, another atom's), P and W from its law. The sums run over the
-   particles in ascending order. The inertia term (the area integral of
+   ranks. Each particle's F, P and W are those of this step's deformation
+   pass (grow runs after it; the bonds this step's growth cuts are not yet
+   cut), read from the pair's per-atom arrays, not computed again (with the
+   conservative hourglass form the stored P carries the hourglass term: P
+   then comes from the law). The sums run over the particles in ascending
+   order. The inertia term (the area integral of
    rho0 (a . u_,1 - v . v_,1) q) is left out: it is zero for a crack at rest
    and for one running steadily, and it falls with the domain (as r2^3/2
    against J's r2^0), which shrinks with h; it would need each particle's
@@ -395,10 +397,11 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
   J.assign(nt, 0.0);
   // kfit interaction: per tip J, then the interaction integrals of modes I and II
   const int nw = Imix ? 3 : 1;
-  double **x = atom->x, **v = atom->v;
+  double **v = atom->v;
   const double *vfrac = atom->vfrac, *rmass = atom->rmass;
   const double r1 = jr1 * pair->h, r2 = jr2 * pair->h;
-  const auto xr = TLSPH::StridedRows{x[0], 3};
+  // the stored P is the law's unless the conservative hourglass term is in it
+  const bool law_P = pair->hg_form == 2 && pair->gamma != 0.0;
   // each domain's particles, and its momentum and mass (all ranks): J is
   // taken in the frame of the domain's mean velocity. In that of the
   // continuum a uniform velocity changes nothing (its kinetic energy has
@@ -435,11 +438,13 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
       TLSPH::ring_weight(r, r1, r2, &dq);
       const double gq[3] = {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, 0.0};
       if (dq == 0.0) continue;    // (the inertia term, the only one with q, is left out: above)
-      double F[9], P[9];
-      const int nb = pair->nbond[i];
-      if (pair->dim == 2) TLSPH::deformation_gradient_bonds<2>(xr, i, pair->bonds_of<2>(i), nb, F);
-      else TLSPH::deformation_gradient_bonds<3>(xr, i, pair->bonds_of<3>(i), nb, F);
-      const double W = pair->pk1_stress(i, F, P);
+      const double *F = pair->F[i], *P = pair->P[i];
+      double W = pair->psi[i], Fl[9], Pl[9];
+      if (law_P) {
+        for (int k = 0; k < 9; k++) Fl[k] = F[k];
+        W = pair->pk1_stress(i, Fl, Pl);
+        P = Pl;
+      }
       const double rho0 = rmass[i] / vfrac[i];
       const double vr[3] = {v[i][0] - vm[0], v[i][1] - vm[1], v[i][2] - vm[2]};
       mine[nw * a] += vfrac[i] * TLSPH::j_integrand(F, P, W, rho0, vr, e, gq);
@@ -459,31 +464,6 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
     for (int a = 0; a < nt; a++)
       for (int m = 0; m < 2; m++) (*Imix)[2 * a + m] = all[nw * a + 1 + m] / depth;
   }
-}
-
-/* after each deformation pass: which atom each local index held, so that
-   stress_now knows whose F the stored F[i] is */
-void TLSPHCrackTips::note_pass()
-{
-  ftag.assign(atom->tag, atom->tag + atom->nlocal);
-}
-
-/* the Cauchy stress of local particle i at the last deformation pass (grow
-   runs before this step's): from the stored F if it is this atom's, else
-   (the atoms were sorted or migrated at a neighbor build since, or it is new
-   on this rank) from its intact bonds and the positions now */
-void TLSPHCrackTips::stress_now(int i, double *sig)
-{
-  if (i < (int) ftag.size() && ftag[i] == atom->tag[i]) {
-    pair->cauchy_stress(i, sig);
-    return;
-  }
-  double Fn[9];
-  const auto xr = TLSPH::StridedRows{atom->x[0], 3};
-  const int nb = pair->nbond[i];
-  if (pair->dim == 2) TLSPH::deformation_gradient_bonds<2>(xr, i, pair->bonds_of<2>(i), nb, Fn);
-  else TLSPH::deformation_gradient_bonds<3>(xr, i, pair->bonds_of<3>(i), nb, Fn);
-  pair->cauchy_stress(i, Fn, sig);
 }
 
 /* merging: the first point, as a fraction of the move P -> Q of tip a,
@@ -517,33 +497,47 @@ double TLSPHCrackTips::first_crossing(int a, const double *P, const double *Q)
   return best;
 }
 
-/* Each step, before the deformation pass: first the bonds of the cracks
-   nucleated at the end of the last step are cut; then, for every live tip,
+void TLSPHCrackTips::cut_newborn()
+{
+  // cracks born at the end of the last step (nucleate): their bonds go now,
+  // before this step's deformation pass (not in the set-up call of a run,
+  // which recomputes the forces of the step they were born in: a run split
+  // in two, or continued from a restart file, cuts them where one run does)
+  if (update->setupflag) return;
+  bool any = false;
+  for (const auto &tp : list) any = any || tp.newborn;
+  if (!any) return;
+  refresh_cells();    // (cut_path visits the cells: a neighbor build may have renumbered them)
+  for (auto &tp : list)
+    if (tp.newborn) {
+      pair->cut_path(tp.path[0].data(), tp.path[1].data());
+      tp.newborn = 0;
+    }
+}
+
+/* Each step, after the deformation pass (the cracks nucleated at the end
+   of the last step were cut before it, cut_newborn): for every live tip,
    the stress intensity factors from the displacement jump across the faces
    behind it (displacement correlation, samples at r = sample .. sample +
    1.5 h along its path, extrapolated to r = 0; kfit j: their size from the
-   domain J-integral), the kink angle and equivalent K of the maximum
-   tangential stress rule (Erdogan & Sih), and, once G = K_eq^2 / E' reaches
-   G_c, an advance at v = c_R (1 - G_c / G) (Freund's equation of motion)
-   that stops where it meets another crack (merging) or leaves the body. The
-   direction is chosen at the start of a segment (tipseg, default the K
-   samples' reach, 4.5 h) and kept along it; 'branch yoffe' (or 'branch A')
-   splits a tip with G >= 2 G_c once it has grown p_split segments. */
+   domain J-integral over this pass's F, P and W), the kink angle and
+   equivalent K of the maximum tangential stress rule (Erdogan & Sih), and,
+   once G = K_eq^2 / E' reaches G_c, an advance at v = c_R (1 - G_c / G)
+   (Freund's equation of motion) that stops where it meets another crack
+   (merging) or leaves the body. The direction is chosen at the start of a
+   segment (tipseg, default the K samples' reach, 4.5 h) and kept along it;
+   'branch yoffe' (or 'branch A') splits a tip with G >= 2 G_c once it has
+   grown p_split segments. The bonds the advances cut are cut at once; the
+   damage style then computes pass (1) again for their particles, so that
+   this step's forces are those of the bonds left (as when the tips grew
+   before the pass: the same measurement, from the positions of this step
+   and the bonds of the last). */
 void TLSPHCrackTips::grow()
 {
   if (!depth_ready) measure_depth();
   if (!ready) find_tips();
   const int nt = list.size();
   if (!nt) return;
-  // cracks born at the end of the last step (nucleate): their bonds go now
-  // (not in the set-up call of a run, which recomputes the forces of the
-  // step they were born in: a run split in two, or continued from a restart
-  // file, cuts them where one run does)
-  for (auto &tp : list)
-    if (tp.newborn && !update->setupflag) {
-      pair->cut_path(tp.path[0].data(), tp.path[1].data());
-      tp.newborn = 0;
-    }
   constexpr int NK = 4;
   const double rho = p_disc * pair->h;
   double rk[NK];
@@ -752,7 +746,7 @@ void TLSPHCrackTips::grow()
           const double r2 = (X[0] - cx) * (X[0] - cx) + (X[1] - cy) * (X[1] - cy);
           if (r2 >= rh * rh) continue;
           if (!have) {
-            stress_now(i, sig);
+            pair->cauchy_stress(i, sig);
             have = true;
           }
           const double wt = (1.0 - r2 / (rh * rh)) * (1.0 - r2 / (rh * rh));
@@ -940,7 +934,7 @@ void TLSPHCrackTips::grow()
       at least half the tip's reach: tlsph_crack.h), with a tip at each end,
       as a pre-crack's; a tip outside the body (a crack born at a surface)
       stops at once, so the crack is an edge crack. Its bonds are cut at the
-      start of the next step (grow: this step's forces are those of the
+      start of the next step (cut_newborn: this step's forces are those of the
       bonds its F was made from); the new tips carry that mark, also in a
       restart file. */
 void TLSPHCrackTips::nucleate()

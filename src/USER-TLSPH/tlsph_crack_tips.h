@@ -34,7 +34,7 @@ struct CrackTip {
   double seg;                                 // length grown on the current segment
   double own;                                 // length grown since the tip was born
   int alive, growing;
-  int newborn = 0;    // nucleated at the end of the last step: its bonds are cut at the next grow
+  int newborn = 0;    // nucleated at the end of the last step: its bonds are cut at the next cut_newborn
   // at the last force evaluation (not in restart files: measured every step)
   double KI = 0.0, KII = 0.0;    // stress intensity factors
   double G = 0.0;                // energy release rate of the kink direction
@@ -57,14 +57,17 @@ class TLSPHCrackTips : protected Pointers {
   // tensile strength (0: no nucleation)
   // E', the shear modulus and kappa (3 - 4 nu, plane stress (3 - nu) / (1 + nu)), G_c, c_R, sigma_t
   void init(double Eprime, double mu, double kappa, double Gc, double cR, double strength);
-  // every step before the deformation pass: the tips found (first call),
-  // measured, turned, grown and split
+  // every step before the deformation pass: the bonds of the cracks
+  // nucleated at the end of the last step are cut
+  void cut_newborn();
+  // every step after the deformation pass (each local particle's F, P and W
+  // are this step's): the tips found (first call), measured, turned, grown
+  // and split; the damage style then redoes pass (1) for the particles
+  // whose bonds they cut
   void grow();
-  // every step after the deformation pass (pair_coeff strength): new cracks
-  // where the stress reaches the strength (their bonds are cut by the next grow)
+  // every step after grow (pair_coeff strength): new cracks where the stress
+  // reaches the strength (their bonds are cut by the next cut_newborn)
   void nucleate();
-  // after each deformation pass: the atom of each local index (stress_now)
-  void note_pass();
 
   const std::vector<CrackTip> &tips() const { return list; }
   double fracture_energy() const { return Gc; }
@@ -110,8 +113,6 @@ class TLSPHCrackTips : protected Pointers {
   void volume_near(const std::vector<std::array<double, 2>> &pts, double R, std::vector<double> &vol);
 
   double first_crossing(int a, const double *P, const double *Q);
-  void stress_now(int i, double *sig);
-  std::vector<tagint> ftag;    // atom ID of each local index at the last deformation pass
   // Imix: also the interaction integrals of modes I and II (2 per tip)
   void j_integrals(const std::vector<int> &live, const std::vector<double> &dir, std::vector<double> &J,
                    std::vector<double> *Imix = nullptr);
