@@ -229,6 +229,9 @@ void TLSPHCrackTips::init(double Ep, double shear, double kap, double G_c, doubl
   Gc = G_c;
   cR = c_R;
   sigma_t = strength;
+  // the settings may have changed since the stencils were made
+  sample_st.clear();
+  j_st.clear();
 }
 
 /* ----------------------------------------------------------------------
@@ -267,6 +270,22 @@ void TLSPHCrackTips::refresh_cells()
   rc.idx.resize(nlocal);
   std::vector<int> fill(rc.start.begin(), rc.start.end() - 1);
   for (int i = 0; i < nlocal; i++) rc.idx[fill[cell[i]]++] = i;
+}
+
+bool TLSPHCrackTips::stencil_current(std::vector<Stencil> &v, int a)
+{
+  if ((int) v.size() < (int) list.size()) v.resize(list.size());
+  Stencil &st = v[a];
+  const CrackTip &tp = list[a];
+  const int nv = tp.path.size();
+  if (st.nv == nv && st.at == tp.path.back() && st.stamp == cells.stamp) return true;
+  st.nv = nv;
+  st.at = tp.path.back();
+  st.stamp = cells.stamp;
+  st.idx.clear();
+  st.slot.clear();
+  st.w.clear();
+  return false;
 }
 
 void TLSPHCrackTips::particles_in_box(const double *lo, const double *hi, std::vector<int> &out)
@@ -407,17 +426,29 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
   // continuum a uniform velocity changes nothing (its kinetic energy has
   // zero divergence), but the particle sum of T grad q is not exactly zero,
   // and a body in flight (T >> W) would drown J in that sum's error.
-  std::vector<std::vector<int>> dom(nt);
+  // (the particles of each domain and their gq, ex, ey: kept while the tip
+  // stands, Stencil; gq zero inside r1)
   std::vector<double> pm(4 * nt, 0.0), pmall(4 * nt, 0.0);
   std::vector<int> near;
   for (int a = 0; a < nt; a++) {
-    const auto &T = list[live[a]].path.back();
-    const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
-    particles_in_box(lo, hi, near);
-    for (int i : near) {
-      const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
-      if (ex * ex + ey * ey >= r2 * r2) continue;
-      dom[a].push_back(i);
+    const bool have = stencil_current(j_st, live[a]);
+    Stencil &st = j_st[live[a]];
+    if (!have) {
+      const auto &T = list[live[a]].path.back();
+      const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
+      particles_in_box(lo, hi, near);
+      for (int i : near) {
+        const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
+        if (ex * ex + ey * ey >= r2 * r2) continue;
+        const double r = std::sqrt(ex * ex + ey * ey);
+        double dq;
+        TLSPH::ring_weight(r, r1, r2, &dq);
+        st.idx.push_back(i);
+        st.slot.push_back(dq != 0.0);
+        st.w.insert(st.w.end(), {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, ex, ey});
+      }
+    }
+    for (int i : st.idx) {
       for (int d = 0; d < 3; d++) pm[4 * a + d] += rmass[i] * v[i][d];
       pm[4 * a + 3] += rmass[i];
     }
@@ -425,19 +456,17 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
   MPI_Allreduce(pm.data(), pmall.data(), 4 * nt, MPI_DOUBLE, MPI_SUM, world);
   std::vector<double> mine(nw * nt, 0.0), all(nw * nt, 0.0);
   for (int a = 0; a < nt; a++) {
-    const CrackTip &tp = list[live[a]];
-    const auto &T = tp.path.back();
+    const Stencil &st = j_st[live[a]];
     const double e[3] = {dir[2 * a], dir[2 * a + 1], 0.0};
     double vm[3] = {0.0, 0.0, 0.0};
     if (pmall[4 * a + 3] > 0.0)
       for (int d = 0; d < 3; d++) vm[d] = pmall[4 * a + d] / pmall[4 * a + 3];
-    for (int i : dom[a]) {
-      const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
-      const double r = std::sqrt(ex * ex + ey * ey);
-      double dq;
-      TLSPH::ring_weight(r, r1, r2, &dq);
-      const double gq[3] = {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, 0.0};
-      if (dq == 0.0) continue;    // (the inertia term, the only one with q, is left out: above)
+    for (size_t m = 0; m < st.idx.size(); m++) {
+      // (the inertia term, the only one with q, is left out: above)
+      if (!st.slot[m]) continue;
+      const int i = st.idx[m];
+      const double *sw = st.w.data() + 4 * m;
+      const double gq[3] = {sw[0], sw[1], 0.0};
       const double *F = pair->F[i], *P = pair->P[i];
       double W = pair->psi[i], Fl[9], Pl[9];
       if (law_P) {
@@ -449,7 +478,7 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
       const double vr[3] = {v[i][0] - vm[0], v[i][1] - vm[1], v[i][2] - vm[2]};
       mine[nw * a] += vfrac[i] * TLSPH::j_integrand(F, P, W, rho0, vr, e, gq);
       if (Imix) {
-        const double X[3] = {ex, ey, 0.0};
+        const double X[3] = {sw[2], sw[3], 0.0};
         double o[2];
         TLSPH::interaction_integrand(F, P, X, e, gq, mu, kappa, o);
         mine[nw * a + 1] += vfrac[i] * o[0];
@@ -579,31 +608,44 @@ void TLSPHCrackTips::grow()
   refresh_cells();
   std::vector<int> near;
   for (int a = 0; a < nt; a++) {
-    // one query for the samples of a tip: the box around all of them
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    for (int k = 0; k < NK; k++) {
-      const int q = a * NK + k;
-      if (!ok[q]) continue;
-      for (int d = 0; d < 2; d++) lo[d] = MIN(lo[d], Q[2 * q + d] - rho), hi[d] = MAX(hi[d], Q[2 * q + d] + rho);
-    }
-    particles_in_box(lo, hi, near);
-    for (int k = 0; k < NK; k++) {
-      const int q = a * NK + k;
-      if (!ok[q]) continue;
-      for (int i : near) {
-        const double *X = pair->x0c[i];
-        const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
-        const double r2 = dx * dx + dy * dy;
-        if (r2 >= rho * rho) continue;
-        const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
-        // + side: to the left of the path (n = t rotated by +90 deg)
-        const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
-        if (dn == 0.0) continue;
-        double *S = mine.data() + 6 * q + (dn > 0.0 ? 0 : 3);
-        S[0] += w;
-        S[1] += w * (x[i][0] - X[0]);
-        S[2] += w * (x[i][1] - X[1]);
+    if (!list[a].alive) continue;
+    // the particles of the tip's samples (kept while it stands: Stencil),
+    // found by one query, the box around all of them
+    const bool have = stencil_current(sample_st, a);
+    Stencil &st = sample_st[a];
+    if (!have) {
+      double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+      for (int k = 0; k < NK; k++) {
+        const int q = a * NK + k;
+        if (!ok[q]) continue;
+        for (int d = 0; d < 2; d++) lo[d] = MIN(lo[d], Q[2 * q + d] - rho), hi[d] = MAX(hi[d], Q[2 * q + d] + rho);
       }
+      particles_in_box(lo, hi, near);
+      for (int k = 0; k < NK; k++) {
+        const int q = a * NK + k;
+        if (!ok[q]) continue;
+        for (int i : near) {
+          const double *X = pair->x0c[i];
+          const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
+          const double r2 = dx * dx + dy * dy;
+          if (r2 >= rho * rho) continue;
+          const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
+          // + side: to the left of the path (n = t rotated by +90 deg)
+          const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
+          if (dn == 0.0) continue;
+          st.idx.push_back(i);
+          st.slot.push_back(6 * q + (dn > 0.0 ? 0 : 3));
+          st.w.push_back(w);
+        }
+      }
+    }
+    for (size_t m = 0; m < st.idx.size(); m++) {
+      const int i = st.idx[m];
+      const double *X = pair->x0c[i], w = st.w[m];
+      double *S = mine.data() + st.slot[m];
+      S[0] += w;
+      S[1] += w * (x[i][0] - X[0]);
+      S[2] += w * (x[i][1] - X[1]);
     }
   }
   MPI_Allreduce(mine.data(), sums.data(), nt * NK * 6, MPI_DOUBLE, MPI_SUM, world);

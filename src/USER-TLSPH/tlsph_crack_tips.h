@@ -110,6 +110,24 @@ class TLSPHCrackTips : protected Pointers {
     std::array<int, 2> stamp = {-1, -1};
   } cells;
   void refresh_cells();
+
+  /* Per tip, the particles its sums visit and their weights (the K samples'
+     discs in grow, the J domain in j_integrals), kept while the tip stands
+     and the particle indices hold: the same tip position, path vertex
+     count and cells stamp. A standing tip's sums then skip the cell search
+     and the distances; the entries keep the search's order, so the sums
+     are the same bits. */
+  struct Stencil {
+    std::array<double, 2> at = {0.0, 0.0};    // the tip's position when it was made
+    int nv = -1;                              // its path's vertex count then (-1: none)
+    std::array<int, 2> stamp = {-1, -1};      // cells.stamp then
+    std::vector<int> idx;                     // the particles, in the order of the sums
+    std::vector<int> slot;                    // grow: the sample sum each adds to; j_integrals: 1 in the ring
+    std::vector<double> w;                    // grow: weight; j_integrals: gq x, gq y, ex, ey
+  };
+  std::vector<Stencil> sample_st, j_st;    // per tip (its index in list)
+  // true (and st kept) if st was made for tip a as it is; else st emptied and stamped for it
+  bool stencil_current(std::vector<Stencil> &v, int a);
   void volume_near(const std::vector<std::array<double, 2>> &pts, double R, std::vector<double> &vol);
 
   double first_crossing(int a, const double *P, const double *Q);
