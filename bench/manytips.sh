@@ -67,9 +67,9 @@ for m, label, mpa in (("tip-grow", "tlsph/damage criterion tip branch yoffe", 8)
                       ("tipj-grow", "tlsph/damage criterion tip branch yoffe kfit j", 16)):
     g = open(out + "/" + m + "-1.log").read()
     if m.endswith("grow"):
-        label += ", %d MPa: %d tips grow, %d branch, %d leave the body (round 1)" % (
+        label += ", %d MPa: %d tips grow, %d branch, %d stop at another crack, %d leave the body (round 1)" % (
             mpa, len(re.findall(r"grows, K_I", g)), len(re.findall(r"branches", g)),
-            len(re.findall(r"stops at", g)))
+            len(re.findall(r"where it meets another crack", g)), len(re.findall(r"outside the body", g)))
     print("| %s | SIMD step | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |" % (
         label, med[m], low[m], med[m] / med["tlsph"], med[m] / med["tlsph"], med[m] / med["tension"],
         low[m] / low["tlsph"]))
