@@ -437,20 +437,29 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
       const auto &T = list[live[a]].path.back();
       const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
       particles_in_box(lo, hi, near);
+      std::vector<double> ring;
       for (int i : near) {
         const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
         if (ex * ex + ey * ey >= r2 * r2) continue;
+        st.idx.push_back(i);
+        st.w.push_back(rmass[i]);
         const double r = std::sqrt(ex * ex + ey * ey);
         double dq;
         TLSPH::ring_weight(r, r1, r2, &dq);
-        st.idx.push_back(i);
-        st.slot.push_back(dq != 0.0);
-        st.w.insert(st.w.end(), {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, ex, ey});
+        // (the inertia term, the only one with q, is left out, above: only
+        // the ring r1 < r < r2, where grad q is not zero, adds to J)
+        if (dq == 0.0) continue;
+        st.slot.push_back(i);
+        ring.insert(ring.end(), {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, ex, ey,
+                                 vfrac[i], rmass[i] / vfrac[i]});
       }
+      st.w.insert(st.w.end(), ring.begin(), ring.end());
     }
-    for (int i : st.idx) {
-      for (int d = 0; d < 3; d++) pm[4 * a + d] += rmass[i] * v[i][d];
-      pm[4 * a + 3] += rmass[i];
+    const int nd = st.idx.size();
+    for (int m = 0; m < nd; m++) {
+      const double *vi = v[0] + 3 * (bigint) st.idx[m], mi = st.w[m];
+      for (int d = 0; d < 3; d++) pm[4 * a + d] += mi * vi[d];
+      pm[4 * a + 3] += mi;
     }
   }
   MPI_Allreduce(pm.data(), pmall.data(), 4 * nt, MPI_DOUBLE, MPI_SUM, world);
@@ -461,30 +470,33 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
     double vm[3] = {0.0, 0.0, 0.0};
     if (pmall[4 * a + 3] > 0.0)
       for (int d = 0; d < 3; d++) vm[d] = pmall[4 * a + d] / pmall[4 * a + 3];
-    for (size_t m = 0; m < st.idx.size(); m++) {
-      // (the inertia term, the only one with q, is left out: above)
-      if (!st.slot[m]) continue;
-      const int i = st.idx[m];
-      const double *sw = st.w.data() + 4 * m;
-      const double gq[3] = {sw[0], sw[1], 0.0};
-      const double *F = pair->F[i], *P = pair->P[i];
-      double W = pair->psi[i], Fl[9], Pl[9];
+    // (the per-atom arrays are contiguous, rows of 9 and 3: no row pointers)
+    const double *Fs = pair->F[0], *Ps = pair->P[0], *vs = v[0];
+    const double *psi = pair->psi;
+    const double *rw = st.w.data() + st.idx.size();
+    double Ja = 0.0, I1 = 0.0, I2 = 0.0;
+    for (size_t m = 0; m < st.slot.size(); m++, rw += 6) {
+      const int i = st.slot[m];
+      const double gq[3] = {rw[0], rw[1], 0.0};
+      const double *F = Fs + 9 * (bigint) i, *P = Ps + 9 * (bigint) i, *vi = vs + 3 * (bigint) i;
+      double W = psi[i], Fl[9], Pl[9];
       if (law_P) {
         for (int k = 0; k < 9; k++) Fl[k] = F[k];
         W = pair->pk1_stress(i, Fl, Pl);
         P = Pl;
       }
-      const double rho0 = rmass[i] / vfrac[i];
-      const double vr[3] = {v[i][0] - vm[0], v[i][1] - vm[1], v[i][2] - vm[2]};
-      mine[nw * a] += vfrac[i] * TLSPH::j_integrand(F, P, W, rho0, vr, e, gq);
+      const double vr[3] = {vi[0] - vm[0], vi[1] - vm[1], vi[2] - vm[2]};
+      Ja += rw[4] * TLSPH::j_integrand(F, P, W, rw[5], vr, e, gq);
       if (Imix) {
-        const double X[3] = {sw[2], sw[3], 0.0};
+        const double X[3] = {rw[2], rw[3], 0.0};
         double o[2];
         TLSPH::interaction_integrand(F, P, X, e, gq, mu, kappa, o);
-        mine[nw * a + 1] += vfrac[i] * o[0];
-        mine[nw * a + 2] += vfrac[i] * o[1];
+        I1 += rw[4] * o[0];
+        I2 += rw[4] * o[1];
       }
     }
+    mine[nw * a] = Ja;
+    if (Imix) mine[nw * a + 1] = I1, mine[nw * a + 2] = I2;
   }
   MPI_Allreduce(mine.data(), all.data(), nw * nt, MPI_DOUBLE, MPI_SUM, world);
   for (int a = 0; a < nt; a++) J[a] = all[nw * a] / depth;

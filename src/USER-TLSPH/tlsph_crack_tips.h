@@ -122,8 +122,9 @@ class TLSPHCrackTips : protected Pointers {
     int nv = -1;                              // its path's vertex count then (-1: none)
     std::array<int, 2> stamp = {-1, -1};      // cells.stamp then
     std::vector<int> idx;                     // the particles, in the order of the sums
-    std::vector<int> slot;                    // grow: the sample sum each adds to; j_integrals: 1 in the ring
-    std::vector<double> w;                    // grow: weight; j_integrals: gq x, gq y, ex, ey
+    std::vector<int> slot;                    // grow: the sample sum each adds to; j_integrals: the ring's
+    std::vector<double> w;                    // grow: weight; j_integrals: mass (idx), then
+                                              // gq x, gq y, ex, ey, volume, rho0 (slot)
   };
   std::vector<Stencil> sample_st, j_st;    // per tip (its index in list)
   // true (and st kept) if st was made for tip a as it is; else st emptied and stamped for it
