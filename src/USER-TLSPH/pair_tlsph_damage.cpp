@@ -416,6 +416,13 @@ static bool segment_crossed(const double *A, const double *B, const double *P, c
   // growing tips, bench/manytips.sh)
   const double lab2 = (B[0] - A[0]) * (B[0] - A[0]) + (B[1] - A[1]) * (B[1] - A[1]);
   const double lpr2 = (R[0] - P[0]) * (R[0] - P[0]) + (R[1] - P[1]) * (R[1] - P[1]);
+  // A and B clearly on one side of PR: not crossed, without the square root
+  // (sqrt(lab2 lpr2) <= (lab2 + lpr2) / 2, so neither would snap to zero)
+  {
+    const double oa = orient(P, R, A), ob = orient(P, R, B);
+    const double big = 1.0e-9 * 0.5 * (lab2 + lpr2) * (1.0 + 1.0e-12);
+    if (oa * ob > 0.0 && std::fabs(oa) >= big && std::fabs(ob) >= big) return false;
+  }
   const double tol = 1.0e-9 * std::sqrt(lab2 * lpr2);
   auto snap = [tol](double o) { return std::fabs(o) < tol ? 0.0 : o; };
   const double o1 = snap(orient(P, R, A)), o2 = snap(orient(P, R, B));
