@@ -288,6 +288,18 @@ bool TLSPHCrackTips::stencil_current(std::vector<Stencil> &v, int a)
   return false;
 }
 
+const std::vector<int> &TLSPHCrackTips::candidates(Stencil &st, const double *lo, const double *hi)
+{
+  if (st.cstamp == cells.stamp && lo[0] >= st.clo[0] && lo[1] >= st.clo[1] && hi[0] <= st.chi[0] &&
+      hi[1] <= st.chi[1])
+    return st.cand;
+  const double m = pair->h;
+  st.clo[0] = lo[0] - m, st.clo[1] = lo[1] - m, st.chi[0] = hi[0] + m, st.chi[1] = hi[1] + m;
+  st.cstamp = cells.stamp;
+  particles_in_box(st.clo, st.chi, st.cand);
+  return st.cand;
+}
+
 void TLSPHCrackTips::particles_in_box(const double *lo, const double *hi, std::vector<int> &out)
 {
   const RefCells &rc = cells;
@@ -429,14 +441,13 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
   // (the particles of each domain and their gq, ex, ey: kept while the tip
   // stands, Stencil; gq zero inside r1)
   std::vector<double> pm(4 * nt, 0.0), pmall(4 * nt, 0.0);
-  std::vector<int> near;
   for (int a = 0; a < nt; a++) {
     const bool have = stencil_current(j_st, live[a]);
     Stencil &st = j_st[live[a]];
     if (!have) {
       const auto &T = list[live[a]].path.back();
       const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
-      particles_in_box(lo, hi, near);
+      const std::vector<int> &near = candidates(st, lo, hi);
       std::vector<double> ring;
       for (int i : near) {
         const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
@@ -632,7 +643,7 @@ void TLSPHCrackTips::grow()
         if (!ok[q]) continue;
         for (int d = 0; d < 2; d++) lo[d] = MIN(lo[d], Q[2 * q + d] - rho), hi[d] = MAX(hi[d], Q[2 * q + d] + rho);
       }
-      particles_in_box(lo, hi, near);
+      const std::vector<int> &near = candidates(st, lo, hi);
       for (int k = 0; k < NK; k++) {
         const int q = a * NK + k;
         if (!ok[q]) continue;

@@ -125,10 +125,19 @@ class TLSPHCrackTips : protected Pointers {
     std::vector<int> slot;                    // grow: the sample sum each adds to; j_integrals: the ring's
     std::vector<double> w;                    // grow: weight; j_integrals: mass (idx), then
                                               // gq x, gq y, ex, ey, volume, rho0 (slot)
+    // a growing tip: the particles of a box larger than the sums need by h
+    // each way (ascending), searched again only when the box the sums need
+    // leaves it or the indices change; the sums filter them as the cell
+    // search's, so the same particles in the same order
+    std::vector<int> cand;
+    double clo[2] = {0.0, 0.0}, chi[2] = {-1.0, -1.0};
+    std::array<int, 2> cstamp = {-1, -1};
   };
   std::vector<Stencil> sample_st, j_st;    // per tip (its index in list)
   // true (and st kept) if st was made for tip a as it is; else st emptied and stamped for it
   bool stencil_current(std::vector<Stencil> &v, int a);
+  // the particles whose reference position may lie in [lo, hi]: st's candidates
+  const std::vector<int> &candidates(Stencil &st, const double *lo, const double *hi);
   void volume_near(const std::vector<std::array<double, 2>> &pts, double R, std::vector<double> &vol);
 
   double first_crossing(int a, const double *P, const double *Q);
