@@ -736,12 +736,16 @@ void PairTLSPHDamage::after_deformation()
   const std::array<int, 3> stamp = {cache_version, nlocal, atom->nghost};
   const bool full = !phis_valid || stamp != phis_stamp;
   int lchg = full ? 1 : 0;
-  for (int i = 0; i < nlocal; i++) {
-    const int n0 = bonds->nintact0[i];
-    phi[i] = (n0 > 0) ? 1.0 - (double) nbond[i] / n0 : 0.0;
-    if (phi[i] < 0.0) phi[i] = 0.0;
-    if (phi[i] != phi_prev[i]) lchg = 1;
-  }
+  // phi changes only where a bond broke: none on this rank since the last
+  // call (and the same particle indices) leaves every phi as it is
+  if (full || nbroken_local != nbroken_seen)
+    for (int i = 0; i < nlocal; i++) {
+      const int n0 = bonds->nintact0[i];
+      phi[i] = (n0 > 0) ? 1.0 - (double) nbond[i] / n0 : 0.0;
+      if (phi[i] < 0.0) phi[i] = 0.0;
+      if (phi[i] != phi_prev[i]) lchg = 1;
+    }
+  nbroken_seen = nbroken_local;
   int gchg = lchg;
   if (comm->nprocs > 1) MPI_Allreduce(&lchg, &gchg, 1, MPI_INT, MPI_MAX, world);
   const int ia = 2 * dim * dim;    // alpha_i in the packed row (TLSPH::Packed::A)
