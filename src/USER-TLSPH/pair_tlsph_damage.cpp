@@ -416,6 +416,13 @@ static bool segment_crossed(const double *A, const double *B, const double *P, c
   // growing tips, bench/manytips.sh)
   const double lab2 = (B[0] - A[0]) * (B[0] - A[0]) + (B[1] - A[1]) * (B[1] - A[1]);
   const double lpr2 = (R[0] - P[0]) * (R[0] - P[0]) + (R[1] - P[1]) * (R[1] - P[1]);
+  // A and B clearly on one side of PR: not crossed, without the square root
+  // (sqrt(lab2 lpr2) <= (lab2 + lpr2) / 2, so neither would snap to zero)
+  {
+    const double oa = orient(P, R, A), ob = orient(P, R, B);
+    const double big = 1.0e-9 * 0.5 * (lab2 + lpr2) * (1.0 + 1.0e-12);
+    if (oa * ob > 0.0 && std::fabs(oa) >= big && std::fabs(ob) >= big) return false;
+  }
   const double tol = 1.0e-9 * std::sqrt(lab2 * lpr2);
   auto snap = [tol](double o) { return std::fabs(o) < tol ? 0.0 : o; };
   const double o1 = snap(orient(P, R, A)), o2 = snap(orient(P, R, B));
@@ -664,7 +671,9 @@ void PairTLSPHDamage::simd_breaks(const int *list, int n)
 }
 
 /* ----------------------------------------------------------------------
-   every step, before the deformation pass: the pre-cracks once
+   every step, before the deformation pass: the pre-cracks once, and the
+   bonds of the cracks nucleated at the end of the last step ('criterion
+   tip'; its tips grow after the pass, in after_deformation)
 ------------------------------------------------------------------------- */
 
 void PairTLSPHDamage::update_bonds()
@@ -678,7 +687,10 @@ void PairTLSPHDamage::update_bonds()
       for (int i = 0; i < atom->nlocal; i++) bonds->frozen[i][0] = 0.0;
     build_bond_cache();
   }
-  if (tipmode) crack->grow();
+  if (tipmode) {
+    crack->cut_newborn();
+    crack->snapshot_hoop();
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -690,6 +702,16 @@ void PairTLSPHDamage::update_bonds()
 void PairTLSPHDamage::after_deformation()
 {
   if (tipmode) {
+    // the tips, measured on this pass's fields, grow and cut bonds: pass (1)
+    // again for the particles that lost bonds (and, SIMD step, their columns)
+    tip_cut.clear();
+    crack->grow();
+    if (!tip_cut.empty()) {
+      std::sort(tip_cut.begin(), tip_cut.end());
+      tip_cut.erase(std::unique(tip_cut.begin(), tip_cut.end()), tip_cut.end());
+      if (simd_isa != SIMD_NO) simd_breaks(tip_cut.data(), (int) tip_cut.size());
+      else deform_and_break_pass(tip_cut.data(), (int) tip_cut.size());
+    }
     crack->note_pass();
     crack->nucleate();
   }
@@ -718,12 +740,16 @@ void PairTLSPHDamage::after_deformation()
   const std::array<int, 3> stamp = {cache_version, nlocal, atom->nghost};
   const bool full = !phis_valid || stamp != phis_stamp;
   int lchg = full ? 1 : 0;
-  for (int i = 0; i < nlocal; i++) {
-    const int n0 = bonds->nintact0[i];
-    phi[i] = (n0 > 0) ? 1.0 - (double) nbond[i] / n0 : 0.0;
-    if (phi[i] < 0.0) phi[i] = 0.0;
-    if (phi[i] != phi_prev[i]) lchg = 1;
-  }
+  // phi changes only where a bond broke: none on this rank since the last
+  // call (and the same particle indices) leaves every phi as it is
+  if (full || nbroken_local != nbroken_seen)
+    for (int i = 0; i < nlocal; i++) {
+      const int n0 = bonds->nintact0[i];
+      phi[i] = (n0 > 0) ? 1.0 - (double) nbond[i] / n0 : 0.0;
+      if (phi[i] < 0.0) phi[i] = 0.0;
+      if (phi[i] != phi_prev[i]) lchg = 1;
+    }
+  nbroken_seen = nbroken_local;
   int gchg = lchg;
   if (comm->nprocs > 1) MPI_Allreduce(&lchg, &gchg, 1, MPI_INT, MPI_MAX, world);
   const int ia = 2 * dim * dim;    // alpha_i in the packed row (TLSPH::Packed::A)
@@ -867,6 +893,7 @@ void PairTLSPHDamage::cut_path(const double *A, const double *B)
       nbond[i] = n;
       ell_mark(i);
       if (rebuild) recorrect(i);
+      tip_cut.push_back(i);
     }
   }
 }

@@ -107,6 +107,7 @@ class PairTLSPHDamage : public PairTLSPH {
   int tipmode;
   TLSPHCrackTips *crack;
   void cut_path(const double *A, const double *B);
+  std::vector<int> tip_cut;    // local particles whose bonds cut_path cut (after_deformation)
 
   int nmax_d;
   double *phi, *phis, *alphas;
@@ -124,6 +125,7 @@ class PairTLSPHDamage : public PairTLSPH {
   std::array<int, 3> phis_stamp;
   int comm_stage;          // forward: 0 packed rows (base), 1 damage phi; 2: reverse, flags
   bigint nbroken_local;    // bonds broken on this rank so far (from this end)
+  bigint nbroken_seen = -1;    // nbroken_local at the last after_deformation
 
   double family_radius() const { return family > 0.0 ? family : 2.0 * h; }
   void grow_damage();

@@ -229,6 +229,9 @@ void TLSPHCrackTips::init(double Ep, double shear, double kap, double G_c, doubl
   Gc = G_c;
   cR = c_R;
   sigma_t = strength;
+  // the settings may have changed since the stencils were made
+  sample_st.clear();
+  j_st.clear();
 }
 
 /* ----------------------------------------------------------------------
@@ -267,6 +270,34 @@ void TLSPHCrackTips::refresh_cells()
   rc.idx.resize(nlocal);
   std::vector<int> fill(rc.start.begin(), rc.start.end() - 1);
   for (int i = 0; i < nlocal; i++) rc.idx[fill[cell[i]]++] = i;
+}
+
+bool TLSPHCrackTips::stencil_current(std::vector<Stencil> &v, int a)
+{
+  if ((int) v.size() < (int) list.size()) v.resize(list.size());
+  Stencil &st = v[a];
+  const CrackTip &tp = list[a];
+  const int nv = tp.path.size();
+  if (st.nv == nv && st.at == tp.path.back() && st.stamp == cells.stamp) return true;
+  st.nv = nv;
+  st.at = tp.path.back();
+  st.stamp = cells.stamp;
+  st.idx.clear();
+  st.slot.clear();
+  st.w.clear();
+  return false;
+}
+
+const std::vector<int> &TLSPHCrackTips::candidates(Stencil &st, const double *lo, const double *hi)
+{
+  if (st.cstamp == cells.stamp && lo[0] >= st.clo[0] && lo[1] >= st.clo[1] && hi[0] <= st.chi[0] &&
+      hi[1] <= st.chi[1])
+    return st.cand;
+  const double m = pair->h;
+  st.clo[0] = lo[0] - m, st.clo[1] = lo[1] - m, st.chi[0] = hi[0] + m, st.chi[1] = hi[1] + m;
+  st.cstamp = cells.stamp;
+  particles_in_box(st.clo, st.chi, st.cand);
+  return st.cand;
 }
 
 void TLSPHCrackTips::particles_in_box(const double *lo, const double *hi, std::vector<int> &out)
@@ -379,10 +410,12 @@ void TLSPHCrackTips::find_tips()
    faces its K_I / K_II are measured on, below), over the particles whose
    reference position lies within jr2 h of
    the tip (a cylinder through the thickness in 3D), per unit depth, all
-   ranks. Each particle's F comes from its intact bonds and the positions
-   now (the F of the last deformation pass is a step old and, at a neighbor
-   build, another atom's), P and W from its law. The sums run over the
-   particles in ascending order. The inertia term (the area integral of
+   ranks. Each particle's F, P and W are those of this step's deformation
+   pass (grow runs after it; the bonds this step's growth cuts are not yet
+   cut), read from the pair's per-atom arrays, not computed again (with the
+   conservative hourglass form the stored P carries the hourglass term: P
+   then comes from the law). The sums run over the particles in ascending
+   order. The inertia term (the area integral of
    rho0 (a . u_,1 - v . v_,1) q) is left out: it is zero for a crack at rest
    and for one running steadily, and it falls with the domain (as r2^3/2
    against J's r2^0), which shrinks with h; it would need each particle's
@@ -395,62 +428,86 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
   J.assign(nt, 0.0);
   // kfit interaction: per tip J, then the interaction integrals of modes I and II
   const int nw = Imix ? 3 : 1;
-  double **x = atom->x, **v = atom->v;
+  double **v = atom->v;
   const double *vfrac = atom->vfrac, *rmass = atom->rmass;
   const double r1 = jr1 * pair->h, r2 = jr2 * pair->h;
-  const auto xr = TLSPH::StridedRows{x[0], 3};
+  // the stored P is the law's unless the conservative hourglass term is in it
+  const bool law_P = pair->hg_form == 2 && pair->gamma != 0.0;
   // each domain's particles, and its momentum and mass (all ranks): J is
   // taken in the frame of the domain's mean velocity. In that of the
   // continuum a uniform velocity changes nothing (its kinetic energy has
   // zero divergence), but the particle sum of T grad q is not exactly zero,
   // and a body in flight (T >> W) would drown J in that sum's error.
-  std::vector<std::vector<int>> dom(nt);
+  // (the particles of each domain and their gq, ex, ey: kept while the tip
+  // stands, Stencil; gq zero inside r1)
   std::vector<double> pm(4 * nt, 0.0), pmall(4 * nt, 0.0);
-  std::vector<int> near;
   for (int a = 0; a < nt; a++) {
-    const auto &T = list[live[a]].path.back();
-    const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
-    particles_in_box(lo, hi, near);
-    for (int i : near) {
-      const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
-      if (ex * ex + ey * ey >= r2 * r2) continue;
-      dom[a].push_back(i);
-      for (int d = 0; d < 3; d++) pm[4 * a + d] += rmass[i] * v[i][d];
-      pm[4 * a + 3] += rmass[i];
+    const bool have = stencil_current(j_st, live[a]);
+    Stencil &st = j_st[live[a]];
+    if (!have) {
+      const auto &T = list[live[a]].path.back();
+      const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
+      const std::vector<int> &near = candidates(st, lo, hi);
+      std::vector<double> ring;
+      for (int i : near) {
+        const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
+        if (ex * ex + ey * ey >= r2 * r2) continue;
+        st.idx.push_back(i);
+        st.w.push_back(rmass[i]);
+        const double r = std::sqrt(ex * ex + ey * ey);
+        double dq;
+        TLSPH::ring_weight(r, r1, r2, &dq);
+        // (the inertia term, the only one with q, is left out, above: only
+        // the ring r1 < r < r2, where grad q is not zero, adds to J)
+        if (dq == 0.0) continue;
+        st.slot.push_back(i);
+        ring.insert(ring.end(), {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, ex, ey,
+                                 vfrac[i], rmass[i] / vfrac[i]});
+      }
+      st.w.insert(st.w.end(), ring.begin(), ring.end());
+    }
+    const int nd = st.idx.size();
+    for (int m = 0; m < nd; m++) {
+      const double *vi = v[0] + 3 * (bigint) st.idx[m], mi = st.w[m];
+      for (int d = 0; d < 3; d++) pm[4 * a + d] += mi * vi[d];
+      pm[4 * a + 3] += mi;
     }
   }
   MPI_Allreduce(pm.data(), pmall.data(), 4 * nt, MPI_DOUBLE, MPI_SUM, world);
   std::vector<double> mine(nw * nt, 0.0), all(nw * nt, 0.0);
   for (int a = 0; a < nt; a++) {
-    const CrackTip &tp = list[live[a]];
-    const auto &T = tp.path.back();
+    const Stencil &st = j_st[live[a]];
     const double e[3] = {dir[2 * a], dir[2 * a + 1], 0.0};
     double vm[3] = {0.0, 0.0, 0.0};
     if (pmall[4 * a + 3] > 0.0)
       for (int d = 0; d < 3; d++) vm[d] = pmall[4 * a + d] / pmall[4 * a + 3];
-    for (int i : dom[a]) {
-      const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
-      const double r = std::sqrt(ex * ex + ey * ey);
-      double dq;
-      TLSPH::ring_weight(r, r1, r2, &dq);
-      const double gq[3] = {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, 0.0};
-      if (dq == 0.0) continue;    // (the inertia term, the only one with q, is left out: above)
-      double F[9], P[9];
-      const int nb = pair->nbond[i];
-      if (pair->dim == 2) TLSPH::deformation_gradient_bonds<2>(xr, i, pair->bonds_of<2>(i), nb, F);
-      else TLSPH::deformation_gradient_bonds<3>(xr, i, pair->bonds_of<3>(i), nb, F);
-      const double W = pair->pk1_stress(i, F, P);
-      const double rho0 = rmass[i] / vfrac[i];
-      const double vr[3] = {v[i][0] - vm[0], v[i][1] - vm[1], v[i][2] - vm[2]};
-      mine[nw * a] += vfrac[i] * TLSPH::j_integrand(F, P, W, rho0, vr, e, gq);
+    // (the per-atom arrays are contiguous, rows of 9 and 3: no row pointers)
+    const double *Fs = pair->F[0], *Ps = pair->P[0], *vs = v[0];
+    const double *psi = pair->psi;
+    const double *rw = st.w.data() + st.idx.size();
+    double Ja = 0.0, I1 = 0.0, I2 = 0.0;
+    for (size_t m = 0; m < st.slot.size(); m++, rw += 6) {
+      const int i = st.slot[m];
+      const double gq[3] = {rw[0], rw[1], 0.0};
+      const double *F = Fs + 9 * (bigint) i, *P = Ps + 9 * (bigint) i, *vi = vs + 3 * (bigint) i;
+      double W = psi[i], Fl[9], Pl[9];
+      if (law_P) {
+        for (int k = 0; k < 9; k++) Fl[k] = F[k];
+        W = pair->pk1_stress(i, Fl, Pl);
+        P = Pl;
+      }
+      const double vr[3] = {vi[0] - vm[0], vi[1] - vm[1], vi[2] - vm[2]};
+      Ja += rw[4] * TLSPH::j_integrand(F, P, W, rw[5], vr, e, gq);
       if (Imix) {
-        const double X[3] = {ex, ey, 0.0};
+        const double X[3] = {rw[2], rw[3], 0.0};
         double o[2];
         TLSPH::interaction_integrand(F, P, X, e, gq, mu, kappa, o);
-        mine[nw * a + 1] += vfrac[i] * o[0];
-        mine[nw * a + 2] += vfrac[i] * o[1];
+        I1 += rw[4] * o[0];
+        I2 += rw[4] * o[1];
       }
     }
+    mine[nw * a] = Ja;
+    if (Imix) mine[nw * a + 1] = I1, mine[nw * a + 2] = I2;
   }
   MPI_Allreduce(mine.data(), all.data(), nw * nt, MPI_DOUBLE, MPI_SUM, world);
   for (int a = 0; a < nt; a++) J[a] = all[nw * a] / depth;
@@ -461,6 +518,57 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
   }
 }
 
+/* a segment keeps its direction until the K samples lie on it (tipseg 0:
+   their reach, the last sample's distance behind the tip plus its disc) */
+double TLSPHCrackTips::segment_length() const
+{
+  const double rk_last = (p_sample + 0.5 * 3) * pair->h, rho = p_disc * pair->h;
+  return seg > 0.0 ? seg * pair->h : rk_last + rho;
+}
+
+/* grow reads the hoop stress of a tip that starts a segment this step with
+   G >= G_c, under 'tipdir hoop', or under 'branch yoffe' once it has grown
+   p_split segments (and G >= 2 G_c): all of it but G is known before the
+   tip is measured */
+bool TLSPHCrackTips::may_read_hoop(int a, double seglen) const
+{
+  const CrackTip &tp = list[a];
+  if (!tp.alive || tp.seg != 0.0) return false;
+  return tipdir_hoop || (branch < 0.0 && tp.own >= p_split * seglen);
+}
+
+void TLSPHCrackTips::snapshot_hoop()
+{
+  if (!ready || update->setupflag) return;    // (the set-up call reads no hoop stress)
+  const int nt = list.size();
+  if ((int) hoop_snap.size() < nt) hoop_snap.resize(nt);
+  const double seglen = segment_length();
+  const double R = p_hoopr * pair->h + pair->h;    // (as grow: rs + rh)
+  bool any = false;
+  for (int a = 0; a < nt && !any; a++) any = may_read_hoop(a, seglen);
+  if (!any) return;
+  refresh_cells();
+  std::vector<int> near;
+  for (int a = 0; a < nt; a++) {
+    if (!may_read_hoop(a, seglen)) continue;
+    HoopSnap &hs = hoop_snap[a];
+    hs.step = update->ntimestep;
+    hs.idx.clear();
+    hs.sig.clear();
+    const auto &P = list[a].path.back();
+    const double lo[2] = {P[0] - R, P[1] - R}, hi[2] = {P[0] + R, P[1] + R};
+    particles_in_box(lo, hi, near);
+    for (int i : near) {
+      const double ex = pair->x0c[i][0] - P[0], ey = pair->x0c[i][1] - P[1];
+      if (ex * ex + ey * ey > R * R) continue;
+      double sig[9];
+      stress_now(i, sig);
+      hs.idx.push_back(i);
+      hs.sig.insert(hs.sig.end(), {sig[0], sig[4], sig[1]});
+    }
+  }
+}
+
 /* after each deformation pass: which atom each local index held, so that
    stress_now knows whose F the stored F[i] is */
 void TLSPHCrackTips::note_pass()
@@ -468,10 +576,10 @@ void TLSPHCrackTips::note_pass()
   ftag.assign(atom->tag, atom->tag + atom->nlocal);
 }
 
-/* the Cauchy stress of local particle i at the last deformation pass (grow
-   runs before this step's): from the stored F if it is this atom's, else
-   (the atoms were sorted or migrated at a neighbor build since, or it is new
-   on this rank) from its intact bonds and the positions now */
+/* the Cauchy stress of local particle i at the last deformation pass (called
+   before this step's): from the stored F if it is this atom's, else (the
+   atoms were sorted or migrated at a neighbor build since, or it is new on
+   this rank) from its intact bonds and the positions now */
 void TLSPHCrackTips::stress_now(int i, double *sig)
 {
   if (i < (int) ftag.size() && ftag[i] == atom->tag[i]) {
@@ -517,39 +625,52 @@ double TLSPHCrackTips::first_crossing(int a, const double *P, const double *Q)
   return best;
 }
 
-/* Each step, before the deformation pass: first the bonds of the cracks
-   nucleated at the end of the last step are cut; then, for every live tip,
+void TLSPHCrackTips::cut_newborn()
+{
+  // cracks born at the end of the last step (nucleate): their bonds go now,
+  // before this step's deformation pass (not in the set-up call of a run,
+  // which recomputes the forces of the step they were born in: a run split
+  // in two, or continued from a restart file, cuts them where one run does)
+  if (update->setupflag) return;
+  bool any = false;
+  for (const auto &tp : list) any = any || tp.newborn;
+  if (!any) return;
+  refresh_cells();    // (cut_path visits the cells: a neighbor build may have renumbered them)
+  for (auto &tp : list)
+    if (tp.newborn) {
+      pair->cut_path(tp.path[0].data(), tp.path[1].data());
+      tp.newborn = 0;
+    }
+}
+
+/* Each step, after the deformation pass (the cracks nucleated at the end
+   of the last step were cut before it, cut_newborn): for every live tip,
    the stress intensity factors from the displacement jump across the faces
    behind it (displacement correlation, samples at r = sample .. sample +
    1.5 h along its path, extrapolated to r = 0; kfit j: their size from the
-   domain J-integral), the kink angle and equivalent K of the maximum
-   tangential stress rule (Erdogan & Sih), and, once G = K_eq^2 / E' reaches
-   G_c, an advance at v = c_R (1 - G_c / G) (Freund's equation of motion)
-   that stops where it meets another crack (merging) or leaves the body. The
-   direction is chosen at the start of a segment (tipseg, default the K
-   samples' reach, 4.5 h) and kept along it; 'branch yoffe' (or 'branch A')
-   splits a tip with G >= 2 G_c once it has grown p_split segments. */
+   domain J-integral over this pass's F, P and W), the kink angle and
+   equivalent K of the maximum tangential stress rule (Erdogan & Sih), and,
+   once G = K_eq^2 / E' reaches G_c, an advance at v = c_R (1 - G_c / G)
+   (Freund's equation of motion) that stops where it meets another crack
+   (merging) or leaves the body. The direction is chosen at the start of a
+   segment (tipseg, default the K samples' reach, 4.5 h) and kept along it;
+   'branch yoffe' (or 'branch A') splits a tip with G >= 2 G_c once it has
+   grown p_split segments. The bonds the advances cut are cut at once; the
+   damage style then computes pass (1) again for their particles, so that
+   this step's forces are those of the bonds left (as when the tips grew
+   before the pass: the same measurement, from the positions of this step
+   and the bonds of the last). */
 void TLSPHCrackTips::grow()
 {
   if (!depth_ready) measure_depth();
   if (!ready) find_tips();
   const int nt = list.size();
   if (!nt) return;
-  // cracks born at the end of the last step (nucleate): their bonds go now
-  // (not in the set-up call of a run, which recomputes the forces of the
-  // step they were born in: a run split in two, or continued from a restart
-  // file, cuts them where one run does)
-  for (auto &tp : list)
-    if (tp.newborn && !update->setupflag) {
-      pair->cut_path(tp.path[0].data(), tp.path[1].data());
-      tp.newborn = 0;
-    }
   constexpr int NK = 4;
   const double rho = p_disc * pair->h;
   double rk[NK];
   for (int k = 0; k < NK; k++) rk[k] = (p_sample + 0.5 * k) * pair->h;
-  // a segment keeps its direction until the samples lie on it
-  const double seglen = seg > 0.0 ? seg * pair->h : rk[NK - 1] + rho;
+  const double seglen = segment_length();
   // sample points and the face normal there, walking back along each path
   std::vector<double> Q(nt * NK * 2), T(nt * NK * 2);
   std::vector<int> ok(nt * NK, 0);
@@ -585,31 +706,44 @@ void TLSPHCrackTips::grow()
   refresh_cells();
   std::vector<int> near;
   for (int a = 0; a < nt; a++) {
-    // one query for the samples of a tip: the box around all of them
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    for (int k = 0; k < NK; k++) {
-      const int q = a * NK + k;
-      if (!ok[q]) continue;
-      for (int d = 0; d < 2; d++) lo[d] = MIN(lo[d], Q[2 * q + d] - rho), hi[d] = MAX(hi[d], Q[2 * q + d] + rho);
-    }
-    particles_in_box(lo, hi, near);
-    for (int k = 0; k < NK; k++) {
-      const int q = a * NK + k;
-      if (!ok[q]) continue;
-      for (int i : near) {
-        const double *X = pair->x0c[i];
-        const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
-        const double r2 = dx * dx + dy * dy;
-        if (r2 >= rho * rho) continue;
-        const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
-        // + side: to the left of the path (n = t rotated by +90 deg)
-        const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
-        if (dn == 0.0) continue;
-        double *S = mine.data() + 6 * q + (dn > 0.0 ? 0 : 3);
-        S[0] += w;
-        S[1] += w * (x[i][0] - X[0]);
-        S[2] += w * (x[i][1] - X[1]);
+    if (!list[a].alive) continue;
+    // the particles of the tip's samples (kept while it stands: Stencil),
+    // found by one query, the box around all of them
+    const bool have = stencil_current(sample_st, a);
+    Stencil &st = sample_st[a];
+    if (!have) {
+      double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+      for (int k = 0; k < NK; k++) {
+        const int q = a * NK + k;
+        if (!ok[q]) continue;
+        for (int d = 0; d < 2; d++) lo[d] = MIN(lo[d], Q[2 * q + d] - rho), hi[d] = MAX(hi[d], Q[2 * q + d] + rho);
       }
+      const std::vector<int> &near = candidates(st, lo, hi);
+      for (int k = 0; k < NK; k++) {
+        const int q = a * NK + k;
+        if (!ok[q]) continue;
+        for (int i : near) {
+          const double *X = pair->x0c[i];
+          const double dx = X[0] - Q[2 * q], dy = X[1] - Q[2 * q + 1];
+          const double r2 = dx * dx + dy * dy;
+          if (r2 >= rho * rho) continue;
+          const double w = (1.0 - r2 / (rho * rho)) * (1.0 - r2 / (rho * rho));
+          // + side: to the left of the path (n = t rotated by +90 deg)
+          const double dn = -T[2 * q + 1] * dx + T[2 * q] * dy;
+          if (dn == 0.0) continue;
+          st.idx.push_back(i);
+          st.slot.push_back(6 * q + (dn > 0.0 ? 0 : 3));
+          st.w.push_back(w);
+        }
+      }
+    }
+    for (size_t m = 0; m < st.idx.size(); m++) {
+      const int i = st.idx[m];
+      const double *X = pair->x0c[i], w = st.w[m];
+      double *S = mine.data() + st.slot[m];
+      S[0] += w;
+      S[1] += w * (x[i][0] - X[0]);
+      S[2] += w * (x[i][1] - X[1]);
     }
   }
   MPI_Allreduce(mine.data(), sums.data(), nt * NK * 6, MPI_DOUBLE, MPI_SUM, world);
@@ -714,7 +848,10 @@ void TLSPHCrackTips::grow()
   // 'tipdir hoop': the new direction where the hoop stress on the circle of
   // radius 2h about the tip is largest (within +-80 deg of the current
   // direction; stresses interpolated over discs of radius h, which never
-  // reach the faces behind the tip)
+  // reach the faces behind the tip; the stress of the last step's pass,
+  // kept by snapshot_hoop before this one: both rules were set up reading
+  // it, and branch yoffe's split depends on which step's stress it reads,
+  // doc/fracture-convergence.md)
   // 'branch yoffe': a tip with G >= 2 G_c branches where the hoop stress
   // about it has two maxima, one each side of its direction (Yoffe's
   // instability of a fast crack); the branches take those two directions
@@ -736,31 +873,30 @@ void TLSPHCrackTips::grow()
       const double phi0 = atan2(tp.t[1], tp.t[0]);
       for (int j = 0; j < NA; j++) ang[w * NA + j] = phi0 + (j - NA / 2) * dth;
     }
-    // each tip's sums over the particles near it, in ascending order
+    // each tip's sums over the particles near it, in ascending order, with
+    // their stress of the last step's pass (snapshot_hoop; only the tips
+    // whose hoop stress is read below)
     for (int w = 0; w < nw; w++) {
-      const auto &P = list[want[w]].path.back();
-      const double lo[2] = {P[0] - (rs + rh), P[1] - (rs + rh)}, hi[2] = {P[0] + rs + rh, P[1] + rs + rh};
-      particles_in_box(lo, hi, near);
-      for (int i : near) {
-        const double *X = pair->x0c[i];
-        bool have = false;
-        double sig[9];
-        const double ex = X[0] - P[0], ey = X[1] - P[1];
-        if (ex * ex + ey * ey > (rs + rh) * (rs + rh)) continue;
+      const int a = want[w];
+      if (!(tipdir_hoop || yoffe_candidate(a))) continue;
+      const HoopSnap *hs = a < (int) hoop_snap.size() ? &hoop_snap[a] : nullptr;
+      if (!hs || hs->step != update->ntimestep)
+        error->one(FLERR, "pair tlsph/damage: internal: no hoop stress kept for tip {} at step {}", a,
+                   update->ntimestep);
+      const auto &P = list[a].path.back();
+      for (size_t m = 0; m < hs->idx.size(); m++) {
+        const double *X = pair->x0c[hs->idx[m]];
+        const double *sig = hs->sig.data() + 3 * m;
         for (int j = 0; j < NA; j++) {
           const double cx = P[0] + rs * cos(ang[w * NA + j]), cy = P[1] + rs * sin(ang[w * NA + j]);
           const double r2 = (X[0] - cx) * (X[0] - cx) + (X[1] - cy) * (X[1] - cy);
           if (r2 >= rh * rh) continue;
-          if (!have) {
-            stress_now(i, sig);
-            have = true;
-          }
           const double wt = (1.0 - r2 / (rh * rh)) * (1.0 - r2 / (rh * rh));
           double *H = hm.data() + 4 * (w * NA + j);
           H[0] += wt;
           H[1] += wt * sig[0];
-          H[2] += wt * sig[4];
-          H[3] += wt * sig[1];
+          H[2] += wt * sig[1];
+          H[3] += wt * sig[2];
         }
       }
     }
@@ -940,7 +1076,7 @@ void TLSPHCrackTips::grow()
       at least half the tip's reach: tlsph_crack.h), with a tip at each end,
       as a pre-crack's; a tip outside the body (a crack born at a surface)
       stops at once, so the crack is an edge crack. Its bonds are cut at the
-      start of the next step (grow: this step's forces are those of the
+      start of the next step (cut_newborn: this step's forces are those of the
       bonds its F was made from); the new tips carry that mark, also in a
       restart file. */
 void TLSPHCrackTips::nucleate()

@@ -34,7 +34,7 @@ struct CrackTip {
   double seg;                                 // length grown on the current segment
   double own;                                 // length grown since the tip was born
   int alive, growing;
-  int newborn = 0;    // nucleated at the end of the last step: its bonds are cut at the next grow
+  int newborn = 0;    // nucleated at the end of the last step: its bonds are cut at the next cut_newborn
   // at the last force evaluation (not in restart files: measured every step)
   double KI = 0.0, KII = 0.0;    // stress intensity factors
   double G = 0.0;                // energy release rate of the kink direction
@@ -57,14 +57,23 @@ class TLSPHCrackTips : protected Pointers {
   // tensile strength (0: no nucleation)
   // E', the shear modulus and kappa (3 - 4 nu, plane stress (3 - nu) / (1 + nu)), G_c, c_R, sigma_t
   void init(double Eprime, double mu, double kappa, double Gc, double cR, double strength);
-  // every step before the deformation pass: the tips found (first call),
-  // measured, turned, grown and split
+  // every step before the deformation pass: the bonds of the cracks
+  // nucleated at the end of the last step are cut
+  void cut_newborn();
+  // every step after cut_newborn, before the deformation pass: the Cauchy
+  // stress of the last pass near each tip whose hoop stress grow may read
+  // this step (hoop_snap)
+  void snapshot_hoop();
+  // every step after the deformation pass (each local particle's F, P and W
+  // are this step's): the tips found (first call), measured, turned, grown
+  // and split; the damage style then redoes pass (1) for the particles
+  // whose bonds they cut
   void grow();
-  // every step after the deformation pass (pair_coeff strength): new cracks
-  // where the stress reaches the strength (their bonds are cut by the next grow)
-  void nucleate();
   // after each deformation pass: the atom of each local index (stress_now)
   void note_pass();
+  // every step after grow (pair_coeff strength): new cracks where the stress
+  // reaches the strength (their bonds are cut by the next cut_newborn)
+  void nucleate();
 
   const std::vector<CrackTip> &tips() const { return list; }
   double fracture_energy() const { return Gc; }
@@ -107,11 +116,56 @@ class TLSPHCrackTips : protected Pointers {
     std::array<int, 2> stamp = {-1, -1};
   } cells;
   void refresh_cells();
+
+  /* Per tip, the particles its sums visit and their weights (the K samples'
+     discs in grow, the J domain in j_integrals), kept while the tip stands
+     and the particle indices hold: the same tip position, path vertex
+     count and cells stamp. A standing tip's sums then skip the cell search
+     and the distances; the entries keep the search's order, so the sums
+     are the same bits. */
+  struct Stencil {
+    std::array<double, 2> at = {0.0, 0.0};    // the tip's position when it was made
+    int nv = -1;                              // its path's vertex count then (-1: none)
+    std::array<int, 2> stamp = {-1, -1};      // cells.stamp then
+    std::vector<int> idx;                     // the particles, in the order of the sums
+    std::vector<int> slot;                    // grow: the sample sum each adds to; j_integrals: the ring's
+    std::vector<double> w;                    // grow: weight; j_integrals: mass (idx), then
+                                              // gq x, gq y, ex, ey, volume, rho0 (slot)
+    // a growing tip: the particles of a box larger than the sums need by h
+    // each way (ascending), searched again only when the box the sums need
+    // leaves it or the indices change; the sums filter them as the cell
+    // search's, so the same particles in the same order
+    std::vector<int> cand;
+    double clo[2] = {0.0, 0.0}, chi[2] = {-1.0, -1.0};
+    std::array<int, 2> cstamp = {-1, -1};
+  };
+  std::vector<Stencil> sample_st, j_st;    // per tip (its index in list)
+  // true (and st kept) if st was made for tip a as it is; else st emptied and stamped for it
+  bool stencil_current(std::vector<Stencil> &v, int a);
+  // the particles whose reference position may lie in [lo, hi]: st's candidates
+  const std::vector<int> &candidates(Stencil &st, const double *lo, const double *hi);
   void volume_near(const std::vector<std::array<double, 2>> &pts, double R, std::vector<double> &vol);
 
-  double first_crossing(int a, const double *P, const double *Q);
-  void stress_now(int i, double *sig);
+  /* The hoop stress that 'tipdir hoop' and 'branch yoffe' read is that of
+     the last step's pass (the stress the tip's K and J are measured in
+     this step is this pass's): grow runs after the pass, so the stress
+     near the tips that may need it is kept before it. Per tip (its index in
+     list), the particles within (p_hoopr + 1) h of it, ascending, and their
+     Cauchy stress xx, yy, xy; valid for the step it was taken in. */
+  struct HoopSnap {
+    bigint step = -1;
+    std::vector<int> idx;
+    std::vector<double> sig;
+  };
+  std::vector<HoopSnap> hoop_snap;
+  // may grow read tip a's hoop stress this step (before its measurement)
+  bool may_read_hoop(int a, double seglen) const;
+  double segment_length() const;
   std::vector<tagint> ftag;    // atom ID of each local index at the last deformation pass
+  // the Cauchy stress of local particle i at the last deformation pass
+  void stress_now(int i, double *sig);
+
+  double first_crossing(int a, const double *P, const double *Q);
   // Imix: also the interaction integrals of modes I and II (2 per tip)
   void j_integrals(const std::vector<int> &live, const std::vector<double> &dir, std::vector<double> &J,
                    std::vector<double> *Imix = nullptr);
