@@ -712,8 +712,8 @@ void PairTLSPHDamage::after_deformation()
       if (simd_isa != SIMD_NO) simd_breaks(tip_cut.data(), (int) tip_cut.size());
       else deform_and_break_pass(tip_cut.data(), (int) tip_cut.size());
     }
-    crack->note_pass();
     crack->nucleate();
+    crack->note_pass();
   }
   const int nlocal = atom->nlocal;
 

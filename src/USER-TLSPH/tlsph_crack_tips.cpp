@@ -466,12 +466,17 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
       }
       st.w.insert(st.w.end(), ring.begin(), ring.end());
     }
+    // (in registers: the same sums in the same order)
     const int nd = st.idx.size();
+    double p0 = 0.0, p1 = 0.0, p2 = 0.0, ms = 0.0;
     for (int m = 0; m < nd; m++) {
       const double *vi = v[0] + 3 * (bigint) st.idx[m], mi = st.w[m];
-      for (int d = 0; d < 3; d++) pm[4 * a + d] += mi * vi[d];
-      pm[4 * a + 3] += mi;
+      p0 += mi * vi[0];
+      p1 += mi * vi[1];
+      p2 += mi * vi[2];
+      ms += mi;
     }
+    pm[4 * a] = p0, pm[4 * a + 1] = p1, pm[4 * a + 2] = p2, pm[4 * a + 3] = ms;
   }
   MPI_Allreduce(pm.data(), pmall.data(), 4 * nt, MPI_DOUBLE, MPI_SUM, world);
   std::vector<double> mine(nw * nt, 0.0), all(nw * nt, 0.0);
@@ -569,11 +574,17 @@ void TLSPHCrackTips::snapshot_hoop()
   }
 }
 
-/* after each deformation pass: which atom each local index held, so that
-   stress_now knows whose F the stored F[i] is */
+/* after each deformation pass (and the tips' growth and nucleation): which
+   atom each local index held, so that stress_now knows whose F the stored
+   F[i] is; only when a tip may read its hoop stress in the next step (the
+   tips do not change before snapshot_hoop asks) */
 void TLSPHCrackTips::note_pass()
 {
-  ftag.assign(atom->tag, atom->tag + atom->nlocal);
+  const double seglen = segment_length();
+  bool any = false;
+  for (int a = 0; a < (int) list.size() && !any; a++) any = may_read_hoop(a, seglen);
+  if (any) ftag.assign(atom->tag, atom->tag + atom->nlocal);
+  else ftag.clear();
 }
 
 /* the Cauchy stress of local particle i at the last deformation pass (called

@@ -69,7 +69,7 @@ class TLSPHCrackTips : protected Pointers {
   // and split; the damage style then redoes pass (1) for the particles
   // whose bonds they cut
   void grow();
-  // after each deformation pass: the atom of each local index (stress_now)
+  // after each step's nucleate: the atom of each local index (stress_now)
   void note_pass();
   // every step after grow (pair_coeff strength): new cracks where the stress
   // reaches the strength (their bonds are cut by the next cut_newborn)
