@@ -11,7 +11,9 @@
 # at 8 MPa none grows in the 300 steps). Each round opens and closes with
 # tlsph's SIMD step: the last column divides every run by the mean of its
 # own round's two, the median over the rounds (the shared machine's speed
-# drifts between rounds by more than the tips cost). Writes bench/manytips.md.
+# drifts between rounds by more than the tips cost). Then the tips' own work,
+# timed inside each tip run (pair tlsph/damage's end-of-run line), over the
+# rest of that run's loop. Writes bench/manytips.md.
 #   bash bench/manytips.sh          (LMP_TLSPH= another binary)
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -85,5 +87,38 @@ for m, label, mpa in (("tip-grow", "tlsph/damage criterion tip branch yoffe", 8)
         low[m] / low["tlsph"], rr[m]))
 print("\n(tlsph's and tension's cost does not depend on the load: the rows under 1 MPa are their baseline. "
       "Under 1 MPa no tip grows: the tips' cost there is their K measurement every step.)")
+# the tips' own work timed inside each run (pair tlsph/damage's end-of-run
+# line): its ratio to the rest of the same run's loop does not see the drift
+# between runs that moves the loop times above
+rows = []
+for m, label in (("tip", "criterion tip branch yoffe (kfit tip), 1 MPa, standing"),
+                 ("tip-scalar", "the same, simd no (scalar)"),
+                 ("tip-grow", "the same, 8 MPa, growing"),
+                 ("tipj", "criterion tip branch yoffe kfit j (the recommended model), 1 MPa, standing"),
+                 ("tipj-grow", "the same, 16 MPa, growing")):
+    sh = []
+    for r in range(1, len(t[m]) + 1):
+        g = re.search(r"crack tips' work ([\d.eE+-]+) s of the loop's ([\d.eE+-]+) s", open("%s/%s-%d.log" % (out, m, r)).read())
+        if g:
+            w, L = float(g.group(1)), float(g.group(2))
+            sh.append(w / (L - w))
+    if sh:
+        rows.append("| %s | %.3f | %.3f | %.3f |" % (label, statistics.median(sh), min(sh), max(sh)))
+ir_note = ""
+try:
+    g = re.search(r"^\| tlsph/damage criterion tension \(no tips\) \| [^|]+ \| ([\d.]+) \|",
+                  open(out + "/../../manytips-ir.md").read(), re.M)
+    ir_note = ", which take %.3fx tlsph's instructions (bench/manytips-ir.md, its own commit)" % float(g.group(1))
+except Exception:
+    pass
+if rows:
+    print("\nThe tips' own work (measuring, turning, growing, splitting, nucleating, the cut particles' pass 1 "
+          "again), timed inside each run and printed by pair tlsph/damage at its end, over the rest of the "
+          "same run's loop: a ratio the drift between runs does not move (each run slows as a whole). The "
+          "rest is tlsph's step plus the damage style's bookkeeping and velocity filter%s. %d rounds.\n"
+          % (ir_note, len(t["tip"])))
+    print("| model | tips' work / rest of the loop, median | lowest | highest |")
+    print("|---|---:|---:|---:|")
+    print("\n".join(rows))
 PY
 cat "$HERE/manytips.md"

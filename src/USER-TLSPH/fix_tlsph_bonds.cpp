@@ -175,7 +175,9 @@ void FixTLSPHBonds::end_of_step()
 // the /kk styles: what was copied between host and device in this run
 void FixTLSPHBonds::post_run()
 {
-  if (owner) owner->report_copies(update->nsteps);
+  if (!owner) return;
+  owner->report_copies(update->nsteps);
+  owner->report_run(update->nsteps);
 }
 
 // v current on the host, for the host code of a Kokkos run (init()); a /kk

@@ -95,6 +95,8 @@ class PairTLSPH : public Pair {
   // /kk styles: the host<->device copies of the run just ended (its nsteps
   // steps) into the log, then the counts cleared (called by the bond fix)
   virtual void report_copies(bigint) {}
+  // the run just ended (its nsteps steps): a style's own timings into the log
+  virtual void report_run(bigint) {}
   // /kk styles: true when the step's arrays live on the device (the bond
   // fix then runs as a Kokkos fix with no per-step host copies)
   virtual bool on_device() const { return false; }

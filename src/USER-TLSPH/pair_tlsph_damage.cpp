@@ -16,6 +16,7 @@
 #include "memory.h"
 #include "pair_tlsph_step.h"
 #include "tlsph_pair_terms.h"
+#include "timer.h"
 #include "update.h"
 
 #include <algorithm>
@@ -274,6 +275,7 @@ void PairTLSPHDamage::read_restart_settings(FILE *fp)
 void PairTLSPHDamage::init_style()
 {
   correction_from_all_partners = !rebuild;
+  tip_wall = 0.0;    // (report_run: this run's)
   PairTLSPH::init_style();
   // 'setup': each particle's correction is frozen once, after the pre-cracks
   bonds->set_frozen_size(rebuild ? 0 : correction_size());
@@ -671,6 +673,27 @@ void PairTLSPHDamage::simd_breaks(const int *list, int n)
 }
 
 /* ----------------------------------------------------------------------
+   the run just ended ('criterion tip'): the wall time of the tips' work in
+   its steps beside the run's loop time, the slowest rank's, into the log:
+   a measure of what the tips cost taken inside one run, so that a shared
+   machine's drift between runs does not enter it (bench/manytips.sh)
+------------------------------------------------------------------------- */
+
+void PairTLSPHDamage::report_run(bigint nsteps)
+{
+  if (!tipmode || nsteps <= 0) return;
+  double mine = tip_wall, most = 0.0;
+  MPI_Allreduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double loop = timer->get_wall(Timer::TOTAL);    // (Finish's 'Loop time', rank 0's)
+  if (comm->me == 0 && loop > 0.0)
+    utils::logmesg(lmp,
+                   "pair tlsph/damage: crack tips' work {:.6g} s of the loop's {:.6g} s in {} steps "
+                   "({:.2f} %; {:.3f} of the rest of the loop)\n",
+                   most, loop, nsteps, 100.0 * most / loop, loop > most ? most / (loop - most) : 0.0);
+  tip_wall = 0.0;
+}
+
+/* ----------------------------------------------------------------------
    every step, before the deformation pass: the pre-cracks once, and the
    bonds of the cracks nucleated at the end of the last step ('criterion
    tip'; its tips grow after the pass, in after_deformation)
@@ -688,8 +711,10 @@ void PairTLSPHDamage::update_bonds()
     build_bond_cache();
   }
   if (tipmode) {
+    const double t0 = MPI_Wtime();
     crack->cut_newborn();
     crack->snapshot_hoop();
+    if (!update->setupflag) tip_wall += MPI_Wtime() - t0;
   }
 }
 
@@ -704,6 +729,7 @@ void PairTLSPHDamage::after_deformation()
   if (tipmode) {
     // the tips, measured on this pass's fields, grow and cut bonds: pass (1)
     // again for the particles that lost bonds (and, SIMD step, their columns)
+    const double t0 = MPI_Wtime();
     tip_cut.clear();
     crack->grow();
     if (!tip_cut.empty()) {
@@ -714,6 +740,7 @@ void PairTLSPHDamage::after_deformation()
     }
     crack->nucleate();
     crack->note_pass();
+    if (!update->setupflag) tip_wall += MPI_Wtime() - t0;
   }
   const int nlocal = atom->nlocal;
 

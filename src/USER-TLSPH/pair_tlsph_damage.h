@@ -108,6 +108,10 @@ class PairTLSPHDamage : public PairTLSPH {
   TLSPHCrackTips *crack;
   void cut_path(const double *A, const double *B);
   std::vector<int> tip_cut;    // local particles whose bonds cut_path cut (after_deformation)
+  // wall time of the tips' work in this run's steps (not its set-up call):
+  // cut_newborn, snapshot_hoop, grow, pass (1) again, nucleate, note_pass
+  double tip_wall = 0.0;
+  void report_run(bigint nsteps) override;
 
   int nmax_d;
   double *phi, *phis, *alphas;
