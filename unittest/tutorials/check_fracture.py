@@ -154,6 +154,18 @@ def main():
             ("peak tip speed below the Rayleigh speed", 0 < vmax < cR),
             ("one crack, nothing cracked off it", c["branches_max_persistent"] == 1 and other == 0),
         ]
+    # the end-of-run line of the tips' work (timed inside the run) against
+    # the run's own loop line: the same steps, the same loop time to 1 %
+    # (rank 0's against Finish's mean over the ranks), 0 < work < loop
+    txt = open(os.path.join(wd, "log.lammps")).read()
+    tw = re.findall(r"crack tips' work " + NUM + r" s of the loop's " + NUM + r" s in (\d+) steps", txt)
+    lp = re.findall(r"^Loop time of " + NUM + r" on \d+ procs for (\d+) steps", txt, re.M)
+    lp = [x for x in lp if int(x[1]) > 0]
+    checks.append(("the log's end-of-run line of the tips' work matches the run's loop line "
+                   "(steps, loop time to 1 %; 0 < work < loop)",
+                   len(tw) == 1 and len(lp) == 1 and tw[0][2] == lp[0][1]
+                   and abs(float(tw[0][1]) - float(lp[0][0])) <= 0.01 * float(lp[0][0])
+                   and 0.0 < float(tw[0][0]) < float(tw[0][1])))
     return verdict(checks)
 
 
