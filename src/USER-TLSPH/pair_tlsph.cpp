@@ -589,6 +589,7 @@ void PairTLSPH::init_style()
   // (newton_pair off, or the SIMD step), which alone reads it
   select_simd();
   bond_values_kept = keeps_bond_values();
+  rows_kept = keeps_rows();
   if (!bond_values_kept) {
     memory->destroy(lean.g);
     memory->destroy(lean.w);
@@ -739,18 +740,18 @@ void PairTLSPH::grow_peratom()
   const int fresh = (nmax == 0);
   nmax = nall + nall / 32 + 16;
   if (fresh) destroy_peratom();
-  // Q: DIM x basis size, <= QMAX; without bond_values_kept the SIMD
-  // layout's columns hold it (q_build until build_ell)
-  if (bond_values_kept) memory->grow(Q, nmax, correction_size(), "tlsph:Q");
+  // Q: DIM x basis size, <= QMAX; without rows_kept the SIMD layout's
+  // columns hold it (q_build until build_ell)
+  if (rows_kept) memory->grow(Q, nmax, correction_size(), "tlsph:Q");
   else memory->destroy(Q);
   memory->grow(sumg, nmax, 3, "tlsph:sumg");
   memory->grow(F, nmax, 9, "tlsph:F");
   memory->grow(P, nmax, 9, "tlsph:P");
   memory->grow(fown, nmax, 3, "tlsph:fown");
-  // the packed rows: without bond_values_kept only the SIMD layout's columns
-  // hold them (the lanes write them there, the forward communication packs
-  // and unpacks them there)
-  if (bond_values_kept) memory->grow(pk, nmax, packed_size(), "tlsph:packed");
+  // the packed rows: without rows_kept only the SIMD layout's columns hold
+  // them (the lanes write them there, the forward communication packs and
+  // unpacks them there)
+  if (rows_kept) memory->grow(pk, nmax, packed_size(), "tlsph:packed");
   else memory->destroy(pk);
   memory->grow(psi, nmax, "tlsph:psi");
   memory->grow(ehg, nmax, "tlsph:ehg");
@@ -907,7 +908,7 @@ void PairTLSPH::build_bond_cache()
   // them in build_ell), and then Q too, in LAMMPS's order until build_ell
   std::vector<double> gone, wone;
   const int qsz = correction_size();
-  if (!bond_values_kept) q_build.assign((size_t) qsz * nlocal, 0.0);
+  if (!rows_kept) q_build.assign((size_t) qsz * nlocal, 0.0);
   int degraded = 0, nostress = 0;
   // right after the partner search: the particles whose gradient cannot be
   // formed (check_reference_partners); the one with the smallest ID is named
@@ -936,7 +937,7 @@ void PairTLSPH::build_bond_cache()
       constexpr int O = decltype(dim_order)::second_type::value;
       double *g = bond_values_kept ? lean.g + D * (bigint) s : gone.data();
       double *w = bond_values_kept ? lean.w + 2 * (bigint) s : wone.data();
-      double *Qi = bond_values_kept ? Q[i] : q_build.data() + (size_t) qsz * i;
+      double *Qi = rows_kept ? Q[i] : q_build.data() + (size_t) qsz * i;
       return TLSPH::particle_bonds<D, O>(i, lean.j + s, lean.k + s, nall, nbond[i], x0rows, vfrac,
                                          kernel, kernel_scale, frozen, b, vj.data(), Qi, sumg[i],
                                          g, w);
@@ -1045,11 +1046,17 @@ void PairTLSPH::recompute_bond_values(int i, const double *&g, const double *&w)
     val_g.resize((size_t) 3 * nall);
     val_w.resize((size_t) 2 * nall);
   }
-  // Q_i: its column of the SIMD layout (build_ell has filled it before any call)
+  // Q_i: its row (rows_kept: tlsph/damage, whose rows follow a new
+  // correction) or its column of the SIMD layout (build_ell has filled it
+  // before any call)
   const int qsz = correction_size();
   val_q.resize((size_t) 2 * qsz);
-  const double *qcol = ell_soa + (bigint) (3 * dim + packed_size()) * ell_nperm;
-  for (int q = 0; q < qsz; q++) val_q[qsz + q] = qcol[(bigint) q * ell_nperm + ell_inv[i]];
+  if (Q) {
+    for (int q = 0; q < qsz; q++) val_q[qsz + q] = Q[i][q];
+  } else {
+    const double *qcol = ell_soa + (bigint) (3 * dim + packed_size()) * ell_nperm;
+    for (int q = 0; q < qsz; q++) val_q[qsz + q] = qcol[(bigint) q * ell_nperm + ell_inv[i]];
+  }
   const double kernel_scale = (dim == 2) ? 1.0 / thickness : 1.0;
   const X0Rows x0rows{x0c[0]};
   double sg[3];
@@ -1291,7 +1298,7 @@ void PairTLSPH::compute_forces()
     }
   }
   };
-  // the rows of the partners: pk, or (bond_values_kept false: only the
+  // the rows of the partners: pk, or (rows_kept false: only the
   // SIMD step's virial pass comes here, in the gather form) its columns
   if constexpr (VIRIAL && !SCATTER) {
     if (!pk) {
@@ -1423,7 +1430,7 @@ int PairTLSPH::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/
 {
   const int stride = packed_size();
   int m = 0;
-  if (!pk) {    // the SIMD layout's columns (bond_values_kept false)
+  if (!pk) {    // the SIMD layout's columns (rows_kept false)
     const double *pks = ell_soa + (bigint) 3 * dim * ell_nperm;
     for (int ii = 0; ii < n; ii++) {
       const double *c = pks + ell_inv[list[ii]];

@@ -114,6 +114,9 @@ class PairTLSPH : public Pair {
   static int simd_value(const char *word);    // SIMD_INVALID for an unknown word
   static bool simd_supported(int isa);
   int simd_in_use() const { return simd_isa; }
+  // the bonds' corrected gradients and weights are stored per bond (lean.g,
+  // lean.w), not computed again where needed (set by init_style)
+  bool bond_values_stored() const { return bond_values_kept; }
   // the SIMD step's layout (TLSPH::EllArrays) and the number of patterns
   void simd_chunks(int *kinds, int *npat) const
   {
@@ -291,7 +294,24 @@ class PairTLSPH : public Pair {
   bool bond_values_kept = true;
   bigint ngw_max = 0;    // bonds that lean.g and lean.w have room for
   virtual bool keeps_bond_values() const;
+  /* Q and the packed rows as per-atom rows (Q, pk): always but where
+     pair_style tlsph's SIMD step keeps them only in its layout's columns
+     (keeps_rows false: then bond_values_kept is false too). tlsph/damage
+     keeps them (its scalar pass (1) again for the particles that lose
+     bonds writes the rows) but not the bond values where the stress is on
+     the lanes: bond_values computes them from Q[i] */
+  bool rows_kept = true;
+  virtual bool keeps_rows() const { return keeps_bond_values(); }
   bool stress_lanes_possible() const;
+  // the same into a scratch buffer the caller may change (tlsph/damage:
+  // drop_bond reorders it with lean.j and lean.k) when they are not kept
+  void bond_values_mutable(int i, double *&g, double *&w)
+  {
+    const double *cg, *cw;
+    bond_values(i, cg, cw);
+    g = const_cast<double *>(cg);    // lean.g / lean.w, or the mutable scratch val_g / val_w
+    w = const_cast<double *>(cw);
+  }
   void bond_values(int i, const double *&g, const double *&w) const
   {
     const bigint s = bond_start[i];
@@ -325,6 +345,9 @@ class PairTLSPH : public Pair {
   // stress, energy density and packed row of local particle i from its F
   // (pair_tlsph_step.h)
   template <int DIM, int ORDER, int LAWS> void particle_stress(int i, bool need_K);
+  // the same from the bonds' view b (bonds_of or bond_view)
+  template <int DIM, int ORDER, int LAWS, class Bonds>
+  void particle_stress_of(int i, bool need_K, const Bonds &b);
   [[noreturn]] void unstable_particle(int i, double J) const;
   template <int DIM, int ORDER, int HG, int VISC, int VIRIAL, int SCATTER> void compute_forces();
   template <int DIM, int ORDER> void dispatch_forces(int hg, int visc, int vir, int newton);

@@ -508,6 +508,7 @@ void PairTLSPHDamage::recorrect(int i)
   std::vector<double> vj;
   unpack_bonds(i, n, b, vj);
   correct_particle(i, b.data(), n, vj.data());
+  if (!bond_values_kept) return;    // bond_values computes them from the new Q[i]
   const int s = bond_start[i];
   for (int m = 0; m < n; m++)
     for (int d = 0; d < dim; d++) lean.g[(bigint) dim * (s + m) + d] = b[m].g[d];
@@ -537,7 +538,10 @@ void PairTLSPHDamage::deform_and_break(const int *list, int nlist)
     const int i = list ? list[ii] : ii;
     const int s = bond_start[i];
     int *bj = lean.j + s;
-    double *bg = lean.g + (bigint) DIM * s;
+    // the values: lean.g and lean.w, or (not kept) computed again into a
+    // scratch copy that drop_bond reorders with lean.j and lean.k
+    double *bg, *bw;
+    bond_values_mutable(i, bg, bw);
     int n = nbond[i];
     const int ti = type[i] * ntp;
     const double *xi = x[i], *x0i = x0[i];
@@ -563,7 +567,7 @@ void PairTLSPHDamage::deform_and_break(const int *list, int nlist)
         if (!rebuild)
           for (int d = 0; d < DIM; d++) sumg[i][d] -= bg[DIM * m + d];
         // keep the leading bonds first (pair_tlsph.h: nlead)
-        TLSPH::drop_bond<DIM>(bj, bg, lean.w + 2 * (bigint) s, lean.k + s, m, nlead[i], n);
+        TLSPH::drop_bond<DIM>(bj, bg, bw, lean.k + s, m, nlead[i], n);
         changed = true;
         continue;
       }
@@ -581,14 +585,15 @@ void PairTLSPHDamage::deform_and_break(const int *list, int nlist)
       if (rebuild) {
         // the corrected gradients changed: F again from the rebuilt ones
         recorrect(i);
+        bond_values_mutable(i, bg, bw);
         const struct {
           double **p;
           const double *operator()(int k) const { return p[k]; }
         } rows{x};
-        TLSPH::deformation_gradient_bonds<DIM>(rows, i, bonds_of<DIM>(i), n, Fi);
+        TLSPH::deformation_gradient_bonds<DIM>(rows, i, bond_view<DIM>(i, bg, bw), n, Fi);
       }
     }
-    particle_stress<DIM, ORDER, LAWS>(i, need_K);
+    particle_stress_of<DIM, ORDER, LAWS>(i, need_K, bond_view<DIM>(i, bg, bw));
   }
 }
 
@@ -897,7 +902,8 @@ void PairTLSPHDamage::cut_path(const double *A, const double *B)
     const double *Xi = x0c[i];
     const int s = bond_start[i];
     int *bj = lean.j + s;
-    double *bg = lean.g + (bigint) dim * s;
+    double *bg, *bw;    // lean.g and lean.w, or a scratch copy (deform_and_break)
+    bond_values_mutable(i, bg, bw);
     int n = nbond[i];
     bool changed = false;
     for (int m = 0; m < n;) {
@@ -912,8 +918,8 @@ void PairTLSPHDamage::cut_path(const double *A, const double *B)
       nbroken_local++;
       if (!rebuild)
         for (int d = 0; d < dim; d++) sumg[i][d] -= bg[dim * m + d];
-      if (dim == 2) TLSPH::drop_bond<2>(bj, bg, lean.w + 2 * (bigint) s, lean.k + s, m, nlead[i], n);
-      else TLSPH::drop_bond<3>(bj, bg, lean.w + 2 * (bigint) s, lean.k + s, m, nlead[i], n);
+      if (dim == 2) TLSPH::drop_bond<2>(bj, bg, bw, lean.k + s, m, nlead[i], n);
+      else TLSPH::drop_bond<3>(bj, bg, bw, lean.k + s, m, nlead[i], n);
       changed = true;
     }
     if (changed) {

@@ -145,8 +145,11 @@ class PairTLSPHDamage : public PairTLSPH {
   bool simd_screen(double &up, double &down, double &reach2) const override;
   void simd_breaks(const int *list, int n) override;
   bool alpha_after_deformation() const override { return true; }
-  // bonds break: their values are re-laid from lean.g and lean.w (ell_fill_lane)
-  bool keeps_bond_values() const override { return true; }
+  // the rows Q and pk stay (pass (1) again for the particles that lose
+  // bonds writes them); the bond values are kept as pair tlsph keeps them
+  // (not with the stress on the lanes: bond_values computes a particle's
+  // again from Q[i] where they are needed, bit for bit)
+  bool keeps_rows() const override { return true; }
 };
 
 }    // namespace LAMMPS_NS

@@ -332,7 +332,7 @@ void PairTLSPH::build_ell()
       for (int d = 0; d < dim; d++) sc[(bigint) d * ns + k] = sumg[i][d];
       vc[k] = atom->vfrac[i];
     }
-    std::vector<double>().swap(q_build);    // Q lives in its columns now (bond_values_kept false)
+    std::vector<double>().swap(q_build);    // Q lives in its columns now (rows_kept false)
   }
 
   // every local particle's bonds sorted by partner in the step's order:
@@ -578,11 +578,12 @@ void PairTLSPH::ell_put_bond(double *vb, int l, int i, int mm, const double *g,
 }
 
 /* lean.g and lean.w are dropped (bond_values_kept false) where nothing
-   but the SIMD layout needs them: pair_style tlsph (no bond changes) with
-   the SIMD step and its stress on the lanes (one isotropic law, not the
-   conservative hourglass form: simd_deformation's 'lanes'), so that no pass
-   of a step reads them; the virial's gather pass and build_ell compute them
-   again per particle (bond_values) */
+   but the SIMD layout needs them every step: the SIMD step with its stress
+   on the lanes (one isotropic law, not the conservative hourglass form:
+   simd_deformation's 'lanes'), so that no pass of a step reads them; the
+   virial's gather pass, build_ell and, in tlsph/damage, the particles that
+   lose bonds (pass (1) again, their lanes re-filled) compute them again
+   per particle (bond_values) */
 bool PairTLSPH::keeps_bond_values() const
 {
 #if TLSPH_ELL_VEC
@@ -888,7 +889,7 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
       st.psi = psi;
       st.ehg = ehg;
       st.fown = fown[0];
-      st.pk = pk ? pk[0] : nullptr;    // null: the columns alone (bond_values_kept false)
+      st.pk = pk ? pk[0] : nullptr;    // null: the columns alone (rows_kept false)
       st.np = np;
       st.pks = pks;
       st.bad = -1;

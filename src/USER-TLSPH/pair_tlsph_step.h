@@ -23,13 +23,20 @@ namespace LAMMPS_NS {
 template <int DIM, int ORDER, int LAWS>
 inline __attribute__((always_inline)) void PairTLSPH::particle_stress(int i, bool need_K)
 {
+  particle_stress_of<DIM, ORDER, LAWS>(i, need_K, bonds_of<DIM>(i));
+}
+
+// the same with the bonds' view b of particle i (its values as bond_values
+// gives them, or a reordered copy of them: tlsph/damage)
+template <int DIM, int ORDER, int LAWS, class Bonds>
+inline __attribute__((always_inline)) void PairTLSPH::particle_stress_of(int i, bool need_K,
+                                                                         const Bonds &b)
+{
   const TLSPH::StridedRows rows{atom->x[0], 3};
-  const auto b = bonds_of<DIM>(i);
   const int *type = atom->type;
   const double Vi = atom->vfrac[i];
-  const TLSPH::HourglassWeights<decltype(b), TLSPH::TypeArray> coeff(pairmat.data(),
-                                                                     TLSPH::TypeArray{type}, b,
-                                                                     gamma, i, Vi);
+  const TLSPH::HourglassWeights<Bonds, TLSPH::TypeArray> coeff(
+      pairmat.data(), TLSPH::TypeArray{type}, b, gamma, i, Vi);
   double J;
   psi[i] = stress_row<DIM, ORDER, LAWS>(mat[type[i]], plane_stress, F[i], P[i], need_K,
                                         hg_form == 2 && gamma != 0.0, rows, i, b, nbond[i], coeff,

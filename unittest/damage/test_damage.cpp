@@ -1540,6 +1540,7 @@ struct SimdRun {
   int shared0 = 0;               // particles reading shared blocks before the run
   long screened = 0, skipped = 0;  // chunks the stretch screen visited / proved safe
   double broken = 0.0;                                   // intact bond ends lost
+  bool values_stored = true;     // the pair kept the bonds' values (lean.g, lean.w)
 };
 
 // script(word): the deck with 'simd word' in its pair_style line
@@ -1554,6 +1555,7 @@ SimdRun simd_run(const std::function<std::string(const std::string &)> &script,
   if (!pair) return r;
   int kinds[3], npat;
   r.simd = pair->simd_in_use();
+  r.values_stored = pair->bond_values_stored();
   pair->simd_chunks(kinds, &npat);
   r.pattern_particles0 = kinds[1];
   const double intact0 = total_intact(damage_columns(lmp));
@@ -1597,6 +1599,7 @@ void simd_damage_test(const std::function<std::string(const std::string &)> &scr
   const SimdRun ref = simd_run(script, "no", true, nsteps);
   const SimdRun gather = simd_run(script, "no", false, nsteps);
   ASSERT_EQ(ref.simd, LAMMPS_NS::PairTLSPH::SIMD_NO);
+  EXPECT_TRUE(ref.values_stored) << "the scalar step reads the stored bond values";
   EXPECT_GT(ref.broken, 50) << "too few bonds broke: the test would be vacuous";
   auto yard = trajectory_difference(ref, gather);
   yard[0] /= length;
@@ -1609,6 +1612,11 @@ void simd_damage_test(const std::function<std::string(const std::string &)> &scr
     if (!LAMMPS_NS::PairTLSPH::simd_supported(isa)) continue;
     const SimdRun r = simd_run(script, LAMMPS_NS::PairTLSPH::simd_name(isa), true, nsteps);
     EXPECT_EQ(r.simd, isa);
+    // one isotropic law: the stress is on the lanes, and the particles that
+    // lose bonds compute their bonds' values again from Q_i (bond_values)
+    // instead of reading them from per-bond arrays
+    EXPECT_FALSE(r.values_stored)
+        << "the SIMD step kept the bond values: computing them again is not exercised";
     auto diff = trajectory_difference(ref, r);
     diff[0] /= length;
     printf("simd %s: |dx|/L %.3g, |dv|/vmax %.3g; %d particles in pattern chunks at the start; "
