@@ -523,12 +523,16 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
   }
 }
 
+double TLSPHCrackTips::sample_radius(int k) const
+{
+  return (p_sample + 0.5 * k) * pair->h;
+}
+
 /* a segment keeps its direction until the K samples lie on it (tipseg 0:
    their reach, the last sample's distance behind the tip plus its disc) */
 double TLSPHCrackTips::segment_length() const
 {
-  const double rk_last = (p_sample + 0.5 * 3) * pair->h, rho = p_disc * pair->h;
-  return seg > 0.0 ? seg * pair->h : rk_last + rho;
+  return seg > 0.0 ? seg * pair->h : sample_radius(NSAMPLE - 1) + p_disc * pair->h;
 }
 
 /* grow reads the hoop stress of a tip that starts a segment this step with
@@ -542,6 +546,15 @@ bool TLSPHCrackTips::may_read_hoop(int a, double seglen) const
   return tipdir_hoop || (branch < 0.0 && tp.own >= p_split * seglen);
 }
 
+// some tip may read its hoop stress this step
+bool TLSPHCrackTips::any_may_read_hoop() const
+{
+  const double seglen = segment_length();
+  for (int a = 0; a < (int) list.size(); a++)
+    if (may_read_hoop(a, seglen)) return true;
+  return false;
+}
+
 void TLSPHCrackTips::snapshot_hoop()
 {
   if (!ready || update->setupflag) return;    // (the set-up call reads no hoop stress)
@@ -549,9 +562,7 @@ void TLSPHCrackTips::snapshot_hoop()
   if ((int) hoop_snap.size() < nt) hoop_snap.resize(nt);
   const double seglen = segment_length();
   const double R = p_hoopr * pair->h + pair->h;    // (as grow: rs + rh)
-  bool any = false;
-  for (int a = 0; a < nt && !any; a++) any = may_read_hoop(a, seglen);
-  if (!any) return;
+  if (!any_may_read_hoop()) return;
   refresh_cells();
   std::vector<int> near;
   for (int a = 0; a < nt; a++) {
@@ -580,10 +591,7 @@ void TLSPHCrackTips::snapshot_hoop()
    tips do not change before snapshot_hoop asks) */
 void TLSPHCrackTips::note_pass()
 {
-  const double seglen = segment_length();
-  bool any = false;
-  for (int a = 0; a < (int) list.size() && !any; a++) any = may_read_hoop(a, seglen);
-  if (any) ftag.assign(atom->tag, atom->tag + atom->nlocal);
+  if (any_may_read_hoop()) ftag.assign(atom->tag, atom->tag + atom->nlocal);
   else ftag.clear();
 }
 
@@ -677,10 +685,10 @@ void TLSPHCrackTips::grow()
   if (!ready) find_tips();
   const int nt = list.size();
   if (!nt) return;
-  constexpr int NK = 4;
+  constexpr int NK = NSAMPLE;
   const double rho = p_disc * pair->h;
   double rk[NK];
-  for (int k = 0; k < NK; k++) rk[k] = (p_sample + 0.5 * k) * pair->h;
+  for (int k = 0; k < NK; k++) rk[k] = sample_radius(k);
   const double seglen = segment_length();
   // sample points and the face normal there, walking back along each path
   std::vector<double> Q(nt * NK * 2), T(nt * NK * 2);
@@ -862,7 +870,7 @@ void TLSPHCrackTips::grow()
   // reach the faces behind the tip; the stress of the last step's pass,
   // kept by snapshot_hoop before this one: both rules were set up reading
   // it, and branch yoffe's split depends on which step's stress it reads,
-  // doc/fracture-convergence.md)
+  // doc/pair_tlsph_damage.rst, "Which step's stress the hoop rules read")
   // 'branch yoffe': a tip with G >= 2 G_c branches where the hoop stress
   // about it has two maxima, one each side of its direction (Yoffe's
   // instability of a fast crack); the branches take those two directions

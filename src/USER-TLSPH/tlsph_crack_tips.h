@@ -160,7 +160,11 @@ class TLSPHCrackTips : protected Pointers {
   std::vector<HoopSnap> hoop_snap;
   // may grow read tip a's hoop stress this step (before its measurement)
   bool may_read_hoop(int a, double seglen) const;
+  bool any_may_read_hoop() const;
   double segment_length() const;
+  // the K samples: NSAMPLE points behind the tip, sample k at sample_radius(k)
+  static constexpr int NSAMPLE = 4;
+  double sample_radius(int k) const;
   std::vector<tagint> ftag;    // atom ID of each local index at the last deformation pass
   // the Cauchy stress of local particle i at the last deformation pass
   void stress_now(int i, double *sig);
