@@ -902,8 +902,10 @@ void PairTLSPHDamage::cut_path(const double *A, const double *B)
     const double *Xi = x0c[i];
     const int s = bond_start[i];
     int *bj = lean.j + s;
-    double *bg, *bw;    // lean.g and lean.w, or a scratch copy (deform_and_break)
-    bond_values_mutable(i, bg, bw);
+    // lean.g and lean.w, or a scratch copy (deform_and_break): fetched at the
+    // first bond cut (not kept, they are computed again: most particles in
+    // the box lose none)
+    double *bg = nullptr, *bw = nullptr;
     int n = nbond[i];
     bool changed = false;
     for (int m = 0; m < n;) {
@@ -916,6 +918,7 @@ void PairTLSPHDamage::cut_path(const double *A, const double *B)
       }
       bonds->state[i][lean.k[s + m]] = FixTLSPHBonds::BROKEN;
       nbroken_local++;
+      if (!bg) bond_values_mutable(i, bg, bw);
       if (!rebuild)
         for (int d = 0; d < dim; d++) sumg[i][d] -= bg[dim * m + d];
       if (dim == 2) TLSPH::drop_bond<2>(bj, bg, bw, lean.k + s, m, nlead[i], n);
