@@ -546,10 +546,9 @@ bool TLSPHCrackTips::may_read_hoop(int a, double seglen) const
   return tipdir_hoop || (branch < 0.0 && tp.own >= p_split * seglen);
 }
 
-// some tip may read its hoop stress this step
-bool TLSPHCrackTips::any_may_read_hoop() const
+// some tip may read its hoop stress this step (seglen: segment_length())
+bool TLSPHCrackTips::any_may_read_hoop(double seglen) const
 {
-  const double seglen = segment_length();
   for (int a = 0; a < (int) list.size(); a++)
     if (may_read_hoop(a, seglen)) return true;
   return false;
@@ -562,7 +561,7 @@ void TLSPHCrackTips::snapshot_hoop()
   if ((int) hoop_snap.size() < nt) hoop_snap.resize(nt);
   const double seglen = segment_length();
   const double R = p_hoopr * pair->h + pair->h;    // (as grow: rs + rh)
-  if (!any_may_read_hoop()) return;
+  if (!any_may_read_hoop(seglen)) return;
   refresh_cells();
   std::vector<int> near;
   for (int a = 0; a < nt; a++) {
@@ -591,7 +590,7 @@ void TLSPHCrackTips::snapshot_hoop()
    tips do not change before snapshot_hoop asks) */
 void TLSPHCrackTips::note_pass()
 {
-  if (any_may_read_hoop()) ftag.assign(atom->tag, atom->tag + atom->nlocal);
+  if (any_may_read_hoop(segment_length())) ftag.assign(atom->tag, atom->tag + atom->nlocal);
   else ftag.clear();
 }
 

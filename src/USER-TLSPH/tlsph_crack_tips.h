@@ -160,7 +160,7 @@ class TLSPHCrackTips : protected Pointers {
   std::vector<HoopSnap> hoop_snap;
   // may grow read tip a's hoop stress this step (before its measurement)
   bool may_read_hoop(int a, double seglen) const;
-  bool any_may_read_hoop() const;
+  bool any_may_read_hoop(double seglen) const;
   double segment_length() const;
   // the K samples: NSAMPLE points behind the tip, sample k at sample_radius(k)
   static constexpr int NSAMPLE = 4;
