@@ -99,7 +99,9 @@ def lattice_bonds(dim, natoms, support=2.66):
                 p *= max(n - abs(o), 0)
             total += p
     return total / n ** dim
-cpu = subprocess.run("lscpu | sed -n 's/^Model name: *//p'", shell=True, capture_output=True, text=True).stdout.strip()
+sys.path.insert(0, __import__("os").path.dirname(__import__("os").path.abspath(sys.argv[2])))  # bench/
+from machine import cpu_model  # noqa: E402
+cpu = cpu_model()
 import os
 label = {"tlsph": "tlsph (ours, plugin, SIMD step)", "tlsph0": "tlsph (ours, plugin, simd no)",
          "tlsphd": "tlsph/damage (ours, plugin, SIMD step)",

@@ -54,8 +54,9 @@ for name, isa, r, natoms, ns, sec, mem, c, lay in rows:
         cpu[(name, isa)].append(float(c) / 100.0 * float(sec))
     if lay != "-":
         layout[name] = lay.replace("_", " ")
-model = subprocess.run("lscpu | sed -n 's/^Model name: *//p'", shell=True, capture_output=True,
-                       text=True).stdout.strip()
+sys.path.insert(0, __import__("os").path.dirname(__import__("os").path.abspath(sys.argv[2])))  # bench/
+from machine import cpu_model  # noqa: E402
+model = cpu_model()
 what = {"no": "scalar step (simd no): the step before this work",
         "portable": "SIMD step, portable (order, columns, chunks, patterns; baseline instructions)",
         "avx2": "SIMD step, AVX2 + FMA (4 lanes)", "avx512": "SIMD step, AVX-512 (8 lanes)"}

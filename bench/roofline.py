@@ -308,7 +308,8 @@ def main():
           f"| the same triad in the last-level cache (3 x 2 MiB) | {bw3:.1f} GB/s |",
           f"| scalar multiply-add peak (SSE2 code, as the package is built) | {peak_s:.1f} GFLOP/s |",
           f"| AVX2 FMA peak (256-bit, two pipes) | {peak_v:.1f} GFLOP/s |",
-          f"| AVX-512 FMA peak (512-bit) | {peak_512:.1f} GFLOP/s |",
+          (f"| AVX-512 FMA peak (512-bit) | {peak_512:.1f} GFLOP/s |" if peak_512 == peak_512
+           else "| AVX-512 FMA peak (512-bit) | - (no AVX-512 on this CPU) |"),
           f"| clock inferred from the FMA peak (16 flops per cycle) | {ghz:.2f} GHz |", "",
           "## The scalar step (simd no) against the ceilings", "",
           "Flops and bytes per particle-step counted from the source (bench/roofline.py: "
