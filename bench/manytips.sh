@@ -37,7 +37,7 @@ for r in $(seq 1 "${ROUNDS:-7}"); do
 done
 commit=$(git -C "$HERE/.." describe --always --dirty 2>/dev/null || echo unknown)
 python3 - "$OUT" "$commit" > "$HERE/manytips.md" <<'PY'
-import re, statistics, sys, platform, datetime
+import os, re, statistics, sys, platform, datetime
 out, commit = sys.argv[1], sys.argv[2]
 t = {}
 for line in open(out + "/times.txt"):
@@ -51,11 +51,9 @@ rr = {m: statistics.median(x / b for x, b in zip(v, base)) for m, v in t.items()
 med = {m: statistics.median(v) for m, v in t.items()}
 low = {m: min(v) for m, v in t.items()}
 tips = len(re.findall(r"crack tip at", open(out + "/tip-1.log").read()))
-cpu = "?"
-try:
-    cpu = next(l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name"))
-except Exception:
-    pass
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(out))))  # bench/
+from machine import cpu_model  # noqa: E402
+cpu = cpu_model()
 print("# Cost of many crack tips (bench/manytips.sh)\n")
 print("- date: %s, commit `%s`, CPU: %s, 1 rank" % (datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), commit, cpu))
 print("- bench/in.manytips: 16,000 particles, %d crack tips, 300 steps; %d round(s) alternating in one "

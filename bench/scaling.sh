@@ -44,7 +44,7 @@ for p in $(seq "$PAIRS"); do
 done
 /usr/bin/python3 - "$OUT/times.txt" "$HERE/scaling.md" "$(git -C "$ROOT" describe --always --dirty 2>/dev/null || echo '?')" \
   "$n" "$ns" "$OUT" "$nh" <<'EOF'
-import datetime, statistics, sys
+import datetime, os, statistics, sys
 rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
 t = {}
 comm = {}
@@ -57,11 +57,9 @@ for p, np_, s, c in rows:
     comm[(int(p), int(np_))] = float(c)
 pairs = sorted({p for p, _ in t})
 ratios = [t[(p, 1)] / t[(p, 2)] for p in pairs]
-cpu = "?"
-for l in open("/proc/cpuinfo"):
-    if l.startswith("model name"):
-        cpu = l.split(":", 1)[1].strip()
-        break
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[2])))  # bench/
+from machine import cpu_model  # noqa: E402
+cpu = cpu_model()
 n, ns, nh = int(sys.argv[4]), int(sys.argv[5]), int(sys.argv[7])
 # the half block's time per rank of the 2-rank run: scaled to n^2 / 2 particles
 weak = [half[p] * (n * n / 2) / (nh * nh) / t[(p, 2)] for p in pairs]
