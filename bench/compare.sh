@@ -73,7 +73,7 @@ SIMD=$(sed -n 's/^pair tlsph: SIMD step (\([a-z0-9]*\),.*/\1/p' "$OUT"/2D-tlsph-
 export COMPARE_SIMD="${SIMD:-none}"
 /usr/bin/python3 - "$OUT/times.txt" "$HERE/compare.md" "$(git -C "$ROOT" describe --always --dirty 2>/dev/null || echo '?')" \
   "$OURS_FLAGS" "$LMP_FLAGS" "$CXX_VER" "$(opt_of "$OURS_FLAGS")" <<'PY'
-import sys, statistics, collections, datetime, platform, subprocess
+import os, sys, statistics, collections, datetime, platform, subprocess
 rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
 t = collections.defaultdict(list); meta = {}
 nbonds = {}; nneigh = collections.defaultdict(set); cpuse = collections.defaultdict(list)
@@ -99,10 +99,9 @@ def lattice_bonds(dim, natoms, support=2.66):
                 p *= max(n - abs(o), 0)
             total += p
     return total / n ** dim
-sys.path.insert(0, __import__("os").path.dirname(__import__("os").path.abspath(sys.argv[2])))  # bench/
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[2])))  # bench/
 from machine import cpu_model  # noqa: E402
 cpu = cpu_model()
-import os
 label = {"tlsph": "tlsph (ours, plugin, SIMD step)", "tlsph0": "tlsph (ours, plugin, simd no)",
          "tlsphd": "tlsph/damage (ours, plugin, SIMD step)",
          "smd": "smd/tlsph (MACHDYN)", "peri": "peri/pmb (PERI, horizon 3.015 dx)"}

@@ -61,11 +61,9 @@ if rings_only:
         print("| %s | %s | %s | %s |" % (r1, r2, cells[0], cells[1]))
     sys.exit(0)
 
-cpu = "?"
-try:
-    cpu = next(l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name"))
-except Exception:
-    pass
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from machine import cpu_model  # noqa: E402
+cpu = cpu_model()
 print("# Stress intensity factors of crack-tip tracking against theory (bench/kcheck.sh)\n")
 print("- date: %s, commit `%s`, CPU: %s" % (datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), commit, cpu))
 print("- bench/in.kcheck: central crack 2a = %g mm on y = 0 in a %g x %g mm glass plate (E 32 GPa, nu 0.2), "

@@ -45,7 +45,7 @@ for r in $(seq "$REPEAT"); do
 done
 /usr/bin/python3 - "$OUT/times.txt" "$HERE/phases.md" \
   "$(git -C "$ROOT" describe --always --dirty 2>/dev/null || echo '?')" "$(g++ --version | head -1)" <<'PY'
-import sys, statistics, collections, datetime, subprocess
+import os, sys, statistics, collections, datetime, subprocess
 rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
 t = collections.defaultdict(list); meta = {}; cpu = collections.defaultdict(list); layout = {}
 for name, isa, r, natoms, ns, sec, mem, c, lay in rows:
@@ -54,7 +54,7 @@ for name, isa, r, natoms, ns, sec, mem, c, lay in rows:
         cpu[(name, isa)].append(float(c) / 100.0 * float(sec))
     if lay != "-":
         layout[name] = lay.replace("_", " ")
-sys.path.insert(0, __import__("os").path.dirname(__import__("os").path.abspath(sys.argv[2])))  # bench/
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[2])))  # bench/
 from machine import cpu_model  # noqa: E402
 model = cpu_model()
 what = {"no": "scalar step (simd no): the step before this work",
