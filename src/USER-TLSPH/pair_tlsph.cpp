@@ -1298,10 +1298,10 @@ void PairTLSPH::compute_forces()
     }
   }
   };
-  // the rows of the partners: pk, or (rows_kept false: only the
-  // SIMD step's virial pass comes here, in the gather form) its columns
+  // the rows of the partners: pk, or (the SIMD step's virial pass, in the
+  // gather form: rows_in_columns) its columns
   if constexpr (VIRIAL && !SCATTER) {
-    if (!pk) {
+    if (rows_in_columns()) {
       loop(EllColumnRows{ell_soa + (bigint) 3 * DIM * ell_nperm, ell_nperm, ell_inv});
       return;
     }
@@ -1430,7 +1430,7 @@ int PairTLSPH::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/
 {
   const int stride = packed_size();
   int m = 0;
-  if (!pk) {    // the SIMD layout's columns (rows_kept false)
+  if (rows_in_columns()) {    // the SIMD layout's columns
     const double *pks = ell_soa + (bigint) 3 * dim * ell_nperm;
     for (int ii = 0; ii < n; ii++) {
       const double *c = pks + ell_inv[list[ii]];
@@ -1449,7 +1449,7 @@ void PairTLSPH::unpack_forward_comm(int n, int first, double *buf)
 {
   const int stride = packed_size();
   int m = 0;
-  if (!pk) {
+  if (rows_in_columns()) {
     double *pks = ell_soa + (bigint) 3 * dim * ell_nperm;
     for (int i = first; i < first + n; i++) {
       double *c = pks + ell_inv[i];

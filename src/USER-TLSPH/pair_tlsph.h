@@ -301,6 +301,11 @@ class PairTLSPH : public Pair {
      bonds writes the rows) but not the bond values where the stress is on
      the lanes: bond_values computes them from Q[i] */
   bool rows_kept = true;
+  /* the packed rows of the step live in the SIMD layout's columns (pk, where
+     kept, holds only what the scalar pass (1) last wrote: a particle that
+     tlsph/damage passes again, or every particle without the stress lanes);
+     the communication and the virial's gather pass read the columns */
+  bool rows_in_columns() const { return !pk || simd_isa != SIMD_NO; }
   virtual bool keeps_rows() const { return keeps_bond_values(); }
   bool stress_lanes_possible() const;
   // the same into a scratch buffer the caller may change (tlsph/damage:
@@ -388,6 +393,10 @@ class PairTLSPH : public Pair {
   // true: after_deformation writes alpha_i into the packed rows (the SIMD
   // step's stress lanes then run, and copy that column afterwards)
   virtual bool alpha_after_deformation() const { return false; }
+  /* false: after_deformation changed no alpha_i this step, so the column
+     that pass (1) wrote from alpha_atom holds them (simd_after_deformation
+     copies it only when true) */
+  bool alpha_changed = true;
   std::vector<int> ell_flagged;    // the screen's particles (LAMMPS indices)
   /* The screen skips the chunks whose bonds cannot have reached a limit
      since their last full screen (simd_deformation): ell_xref, the
@@ -402,7 +411,6 @@ class PairTLSPH : public Pair {
   void simd_screen_select(TLSPH::EllScreen &scr);
   void simd_after_deformation();
   void ell_columns_xv();
-  void ell_columns_pk(int k0, int k1);
   TLSPH::EllParticles ell_particles();
   int ell_ncolumns() const;
   virtual bool simd_capable() const { return true; }    // false: styles without the SIMD step

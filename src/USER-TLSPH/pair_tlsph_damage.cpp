@@ -364,6 +364,9 @@ void PairTLSPHDamage::grow_damage()
   memory->create(phi, nmax_d, "tlsph/damage:phi");
   memory->create(phis, nmax_d, "tlsph/damage:phis");
   memory->create(alphas, nmax_d, "tlsph/damage:alpha");
+  // (the next after_deformation sets them all: phis_valid below; until then
+  // pass (1) copies them into the rows)
+  std::fill(alphas, alphas + nmax_d, alpha);
   memory->create(phi_prev, nmax_d, "tlsph/damage:phi_prev");
   memory->create(mark, nmax_d, "tlsph/damage:mark");
   alpha_atom = alphas;
@@ -785,10 +788,10 @@ void PairTLSPHDamage::after_deformation()
   int gchg = lchg;
   if (comm->nprocs > 1) MPI_Allreduce(&lchg, &gchg, 1, MPI_INT, MPI_MAX, world);
   const int ia = 2 * dim * dim;    // alpha_i in the packed row (TLSPH::Packed::A)
-  if (!gchg) {
-    for (int i = 0; i < nlocal; i++) pk[i][ia] = alphas[i];
-    return;
-  }
+  // no alpha_i changed: pass (1) wrote this alpha_i (alpha_atom) into the
+  // rows and the SIMD columns already
+  alpha_changed = gchg != 0;
+  if (!gchg) return;
   phis_valid = 1;
   phis_stamp = stamp;
   comm_stage = 1;

@@ -807,16 +807,6 @@ void PairTLSPH::ell_columns_xv()
   }
 }
 
-void PairTLSPH::ell_columns_pk(int k0, int k1)
-{
-  const int ns = ell_nperm, np = packed_size();
-  double *pks = ell_soa + (bigint) 3 * dim * ns;
-  for (int k = k0; k < k1; k++) {
-    const double *row = pk[ell_perm[k]];
-    for (int q = 0; q < np; q++) pks[(bigint) q * ns + k] = row[q];
-  }
-}
-
 // columns of ell_soa: x, v, x0c (dim each), the packed rows, Q, s (dim), V, fown (dim),
 // the pair-force accumulators of pass (3) (2 dim)
 int PairTLSPH::ell_ncolumns() const
@@ -884,13 +874,12 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
       st.qs = correction_size();
       st.sumg = sumg[0];
       st.alpha = alpha;
+      st.alpha_atom = alpha_atom;
       st.F = F[0];
       st.P = P[0];
       st.psi = psi;
       st.ehg = ehg;
       st.fown = fown[0];
-      st.pk = pk ? pk[0] : nullptr;    // null: the columns alone (rows_kept false)
-      st.np = np;
       st.pks = pks;
       st.bad = -1;
       st.badJ = 0.0;
@@ -999,7 +988,7 @@ void PairTLSPH::ell_row_to_columns(int i)
 void PairTLSPH::simd_after_deformation()
 {
   if (!ell_dirty.empty()) ell_apply_dirty();
-  if (!alpha_after_deformation()) return;
+  if (!alpha_after_deformation() || !alpha_changed) return;
   const int nlocal = atom->nlocal, ns = ell_nperm, ia = 2 * dim * dim;    // TLSPH::Packed::A
   double *acol = const_cast<double *>(ell_particles().pks) + (bigint) ia * ns;
   for (int k = 0; k < nlocal; k++) acol[k] = pk[ell_perm[k]][ia];
@@ -1024,9 +1013,7 @@ void PairTLSPH::simd_forces(int hg, int visc)
   double **f_hg = bonds->f_hg;
   if (hg == 2)
     for (int i = 0; i < nlocal; i++) f_hg[i][0] = f_hg[i][1] = f_hg[i][2] = 0.0;
-  // the ghosts' packed rows, as the forward communication left them
-  // (without per-atom rows the communication wrote the columns itself)
-  if (pk) ell_columns_pk(nlocal, nlocal + atom->nghost);
+  // (the ghosts' packed rows: the forward communication wrote the columns)
   if (nlocal == 0) return;
   // one material (every type's force-pass numbers equal): no per-pair lookup
   int multi = 0;

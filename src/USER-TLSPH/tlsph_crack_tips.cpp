@@ -421,6 +421,9 @@ void TLSPHCrackTips::find_tips()
    against J's r2^0), which shrinks with h; it would need each particle's
    acceleration, a history that neither migrates with the atoms nor is in a
    restart file, so the same run on other ranks or restarted would differ. */
+// how many particles ahead j_integrals fetches a domain particle's rows
+static constexpr int J_AHEAD = 6;
+
 void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector<double> &dir,
                                  std::vector<double> &J, std::vector<double> *Imix)
 {
@@ -470,6 +473,9 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
     const int nd = st.idx.size();
     double p0 = 0.0, p1 = 0.0, p2 = 0.0, ms = 0.0;
     for (int m = 0; m < nd; m++) {
+      // (the domain's rows are scattered over the per-atom arrays: fetched
+      // a few particles ahead, which leaves the sums as they are)
+      if (m + J_AHEAD < nd) __builtin_prefetch(v[0] + 3 * (bigint) st.idx[m + J_AHEAD]);
       const double *vi = v[0] + 3 * (bigint) st.idx[m], mi = st.w[m];
       p0 += mi * vi[0];
       p1 += mi * vi[1];
@@ -491,8 +497,18 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
     const double *psi = pair->psi;
     const double *rw = st.w.data() + st.idx.size();
     double Ja = 0.0, I1 = 0.0, I2 = 0.0;
-    for (size_t m = 0; m < st.slot.size(); m++, rw += 6) {
+    const size_t nr = st.slot.size();
+    for (size_t m = 0; m < nr; m++, rw += 6) {
       const int i = st.slot[m];
+      if (m + J_AHEAD < nr) {
+        const bigint k = st.slot[m + J_AHEAD];
+        for (const double *r : {Fs + 9 * k, Ps + 9 * k}) {
+          __builtin_prefetch(r);
+          __builtin_prefetch(r + 8);
+        }
+        __builtin_prefetch(vs + 3 * k);
+        __builtin_prefetch(psi + k);
+      }
       const double gq[3] = {rw[0], rw[1], 0.0};
       const double *F = Fs + 9 * (bigint) i, *P = Ps + 9 * (bigint) i, *vi = vs + 3 * (bigint) i;
       double W = psi[i], Fl[9], Pl[9];

@@ -106,7 +106,7 @@ template <int DIM> TLSPH_FORCE_INLINE PatternSlots<DIM> pattern_slots(const EllA
    without the conservative hourglass form (particle_stress_row with
    IsotropicSVK: stress_tensors, then pack_row with R): from F - I (Fa,
    DIM x DIM) the stress P, psi, J, K = J F^-T, the packed row (into the
-   rows and the columns) and V_i P_i s_i. A lane with J <= 0 or a psi that
+   columns) and V_i P_i s_i. A lane with J <= 0 or a psi that
    is not finite is recorded in st.bad (the caller stops the run). Outputs
    by LAMMPS index. */
 struct EllStress {
@@ -115,10 +115,11 @@ struct EllStress {
   const double *Q;          // correction_size() per atom
   int qs;
   const double *sumg;       // 3 per atom
-  double alpha;             // alpha_i (no per-particle alpha here)
-  double *F, *P, *psi, *ehg, *fown, *pk;    // 9, 9, 1, 1, 3, np per atom (pk may be null)
-  int np;
-  double *pks;              // the packed rows' columns (EllParticles::pks)
+  double alpha;             // alpha_i where alpha_atom is null
+  const double *alpha_atom; // per-particle alpha_i by LAMMPS index (tlsph/damage), or null
+  double *F, *P, *psi, *ehg, *fown;    // 9, 9, 1, 1, 3 per atom
+  double *pks;              // the packed rows' columns (EllParticles::pks; the SIMD
+                            // step keeps them there only, not in the rows pk)
   int bad;                  // first lane that failed (LAMMPS index), else -1
   double badJ;
 };
@@ -167,7 +168,10 @@ TLSPH_FORCE_INLINE void ell_stress_lanes(const V *Fa, long i0, const EllParticle
       row[L::K + DIM * r + c] = K[3 * r + c];
     }
   }
-  row[L::A] = ell_splat<V>(st.alpha);
+  if (st.alpha_atom)
+    for (int l = 0; l < W; l++) row[L::A][l] = st.alpha_atom[p.perm[i0 + l]];
+  else
+    row[L::A] = ell_splat<V>(st.alpha);
   for (int r = 0; r < DIM; r++) {
     fo[r] = V{};
     for (int c = 0; c < DIM; c++) fo[r] += Vi * P[3 * r + c] * ell_load<V>(p.scol + c * ns + i0);
@@ -180,8 +184,6 @@ TLSPH_FORCE_INLINE void ell_stress_lanes(const V *Fa, long i0, const EllParticle
     st.psi[i] = psi[l];
     st.ehg[i] = 0.0;
     for (int r = 0; r < 3; r++) st.fown[3 * i + r] = r < DIM ? fo[r][l] : 0.0;
-    if (st.pk)
-      for (int q = 0; q < L::size; q++) st.pk[(long) st.np * i + q] = row[q][l];
     if ((!(J[l] > 0.0) || !std::isfinite(psi[l])) && st.bad < 0) st.bad = (int) i, st.badJ = J[l];
   }
 }
