@@ -1543,9 +1543,16 @@ void PairTLSPH::principal_screen_xy(double s_min, std::vector<int> &out) const
   std::vector<unsigned char> hit(nlocal);
   // s1 >= s_min  <=>  sqrt(d^2 + xy^2) >= J s_min - c (c, d, xy of J sigma):
   // true when the right side is <= 0, else compared squared (no sqrt)
+  // the particles that this step's stress lanes flagged (a superset:
+  // simd_deformation), or every local particle
+  const bool flagged = nuc_hit_step == update->ntimestep && (int) nuc_hit.size() >= nlocal;
   auto screen = [&](auto ps) {
     constexpr bool PS = decltype(ps)::value;
     for (int i = 0; i < nlocal; i++) {
+      if (flagged && !nuc_hit[i]) {
+        hit[i] = 0;
+        continue;
+      }
       const double *Fi = Fp + 9 * (bigint) i;
       const double f00 = Fi[0], f01 = Fi[1], f10 = Fi[3], f11 = Fi[4];
       const double e00 = 0.5 * (f00 * f00 + f10 * f10 - 1.0), e11 = 0.5 * (f01 * f01 + f11 * f11 - 1.0);

@@ -397,6 +397,13 @@ class PairTLSPH : public Pair {
      that pass (1) wrote from alpha_atom holds them (simd_after_deformation
      copies it only when true) */
   bool alpha_changed = true;
+  /* crack nucleation (tlsph/damage's strength, > 0; 2D): the SIMD step's
+     stress lanes flag in nuc_hit the particles whose largest principal
+     stress may reach nuc_screen_s (with a margin), in the pass of step
+     nuc_hit_step (-1: none); principal_screen_xy then tests only those */
+  double nuc_screen_s = 0.0;
+  std::vector<unsigned char> nuc_hit;
+  bigint nuc_hit_step = -1;
   std::vector<int> ell_flagged;    // the screen's particles (LAMMPS indices)
   /* The screen skips the chunks whose bonds cannot have reached a limit
      since their last full screen (simd_deformation): ell_xref, the

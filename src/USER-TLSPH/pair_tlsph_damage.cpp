@@ -336,7 +336,9 @@ void PairTLSPHDamage::init_style()
                 plane_stress ? (3.0 - m.nu) / (1.0 + m.nu) : 3.0 - 4.0 * m.nu, Gc[1],
                 sqrt(m.mu / m.rho) * (0.862 + 1.14 * m.nu) / (1.0 + m.nu),
                 (int) strength.size() > 1 ? strength[1] : 0.0);
+    nuc_screen_s = (int) strength.size() > 1 ? strength[1] : 0.0;
   } else {
+    nuc_screen_s = 0.0;
     for (int t = 1; t < (int) strength.size(); t++)
       if (strength[t] > 0.0)
         error->all(FLERR, "pair tlsph/damage: type {}: strength (crack nucleation) needs "
@@ -678,6 +680,9 @@ void PairTLSPHDamage::simd_breaks(const int *list, int n)
 {
   deform_and_break_pass(list, n);
   for (int q = 0; q < n; q++) ell_row_to_columns(list[q]);
+  // their stress changed after the lanes' nucleation screen: tested exactly
+  if (nuc_hit_step == update->ntimestep)
+    for (int q = 0; q < n; q++) nuc_hit[list[q]] = 1;
 }
 
 /* ----------------------------------------------------------------------

@@ -883,9 +883,16 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
       st.pks = pks;
       st.bad = -1;
       st.badJ = 0.0;
+      st.nuc_s = nuc_screen_s;
+      st.nuc_hit = nullptr;
+      if (DIM == 2 && nuc_screen_s > 0.0) {
+        if ((int) nuc_hit.size() < atom->nmax) nuc_hit.resize(atom->nmax);
+        st.nuc_hit = nuc_hit.data();
+      }
     }
     pick_deformation<DIM, ORDER>(simd_isa, screen)(ell, ell_particles(), F[0], lanes ? &st : nullptr,
                                                    screen ? &scr : nullptr);
+    nuc_hit_step = (lanes && st.nuc_hit) ? update->ntimestep : -1;
     // the flagged particles: the exact test, and F and the stress of what is left
     if (scr.n) simd_breaks(scr.list, scr.n);
     if (lanes) {
@@ -899,6 +906,7 @@ template <int DIM, int ORDER, int LAWS> void PairTLSPH::simd_deformation()
   lanes = false;
   (void) screen;
 #endif
+  nuc_hit_step = -1;
   double *fcol = ell_particles().fcol;
   for (int k = 0; k < nlocal; k++) {
     const int i = ell_perm[k];

@@ -122,6 +122,13 @@ struct EllStress {
                             // step keeps them there only, not in the rows pk)
   int bad;                  // first lane that failed (LAMMPS index), else -1
   double badJ;
+  /* 2D, crack nucleation (tlsph/damage's strength): where nuc_hit is not
+     null, nuc_hit[i] = 1 for each particle whose largest in-plane principal
+     Cauchy stress may reach nuc_s (a margin of 1e-9 of the stresses' size
+     beyond round-off: PairTLSPH::principal_screen_xy tests these exactly),
+     else 0 */
+  double nuc_s;
+  unsigned char *nuc_hit;
 };
 
 template <int DIM, int ORDER, int W, class V>
@@ -168,18 +175,29 @@ TLSPH_FORCE_INLINE void ell_stress_lanes(const V *Fa, long i0, const EllParticle
       row[L::K + DIM * r + c] = K[3 * r + c];
     }
   }
+  row[L::A] = ell_splat<V>(st.alpha);
   if (st.alpha_atom)
     for (int l = 0; l < W; l++) row[L::A][l] = st.alpha_atom[p.perm[i0 + l]];
-  else
-    row[L::A] = ell_splat<V>(st.alpha);
   for (int r = 0; r < DIM; r++) {
     fo[r] = V{};
     for (int c = 0; c < DIM; c++) fo[r] += Vi * P[3 * r + c] * ell_load<V>(p.scol + c * ns + i0);
   }
   for (int q = 0; q < L::size; q++) __builtin_memcpy(st.pks + q * ns + i0, &row[q], sizeof(V));
   for (int r = 0; r < DIM; r++) __builtin_memcpy(p.fcol + r * ns + i0, &fo[r], sizeof(V));
+  // J sigma = P F^T, in-plane (in 2D, P and F couple no in-plane component to z)
+  V mean{}, d{}, xy{};
+  if (DIM == 2 && st.nuc_hit) {
+    const V xx = P[0] * Fm[0] + P[1] * Fm[1], yy = P[3] * Fm[3] + P[4] * Fm[4];
+    xy = P[0] * Fm[3] + P[1] * Fm[4];
+    mean = 0.5 * (xx + yy);
+    d = 0.5 * (xx - yy);
+  }
   for (int l = 0; l < W; l++) {
     const long i = p.perm[i0 + l];
+    if (DIM == 2 && st.nuc_hit) {
+      const double r = std::sqrt(d[l] * d[l] + xy[l] * xy[l]), sJ = st.nuc_s * J[l];
+      st.nuc_hit[i] = mean[l] + r - sJ + 1.0e-9 * (std::fabs(mean[l]) + r + std::fabs(sJ)) >= 0.0;
+    }
     for (int k = 0; k < 9; k++) st.F[9 * i + k] = Fm[k][l], st.P[9 * i + k] = P[k][l];
     st.psi[i] = psi[l];
     st.ehg[i] = 0.0;
