@@ -163,6 +163,7 @@ void FixTLSPHBonds::setup(int /*vflag*/)
   if (!precounted) tally_work(0.5 * update->dt);
   precounted = 1;
   tallied_step = update->ntimestep;
+  if (owner) owner->step_done();
 }
 
 void FixTLSPHBonds::end_of_step()
@@ -170,6 +171,7 @@ void FixTLSPHBonds::end_of_step()
   tally_work(update->dt);
   precounted = 1;
   tallied_step = update->ntimestep;
+  if (owner) owner->step_done();
 }
 
 // the /kk styles: what was copied between host and device in this run

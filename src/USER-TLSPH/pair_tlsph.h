@@ -97,6 +97,9 @@ class PairTLSPH : public Pair {
   virtual void report_copies(bigint) {}
   // the run just ended (its nsteps steps): a style's own timings into the log
   virtual void report_run(bigint) {}
+  // after a run's set-up force and at the end of every step (the bond fix's
+  // setup and end_of_step): the step's whole force is in f
+  virtual void step_done() {}
   // /kk styles: true when the step's arrays live on the device (the bond
   // fix then runs as a Kokkos fix with no per-step host copies)
   virtual bool on_device() const { return false; }

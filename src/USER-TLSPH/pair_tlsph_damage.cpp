@@ -143,8 +143,11 @@ void PairTLSPHDamage::settings(int narg, char **arg)
     }
   }
   if (have_branch && !tipmode)
-    error->all(FLERR, "pair_style tlsph/damage: branch, tipdir, tipseg, kfit, jring and "
-                      "tipparam are settings of 'criterion tip'");
+    error->all(FLERR, "pair_style tlsph/damage: branch, tipdir, tipseg, kfit, jinertia, jring "
+                      "and tipparam are settings of 'criterion tip'");
+  if (crack->jinertia && crack->kfit < 2)
+    error->all(FLERR, "pair_style tlsph/damage: jinertia yes adds the inertia term to the tips' "
+                      "J-integral: it needs kfit j or kfit interaction");
   PairTLSPH::settings((int) base.size(), base.data());
   // the thesis's fracture model uses the linear correction: keep it the default
   if (!have_gradient) order = 1;
@@ -704,6 +707,16 @@ void PairTLSPHDamage::report_run(bigint nsteps)
                    "({:.2f} %; {:.3f} of the rest of the loop)\n",
                    most, loop, nsteps, 100.0 * most / loop, loop > most ? most / (loop - most) : 0.0);
   tip_wall = 0.0;
+}
+
+// 'criterion tip' with jinertia: the tips' share of the step's force (J's
+// inertia term, TLSPHCrackTips::inertia_forces)
+void PairTLSPHDamage::step_done()
+{
+  if (!tipmode) return;
+  const double t0 = MPI_Wtime();
+  crack->inertia_forces();
+  if (!update->setupflag) tip_wall += MPI_Wtime() - t0;
 }
 
 /* ----------------------------------------------------------------------

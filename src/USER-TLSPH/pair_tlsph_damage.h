@@ -112,6 +112,7 @@ class PairTLSPHDamage : public PairTLSPH {
   // cut_newborn, snapshot_hoop, grow, pass (1) again, nucleate, note_pass
   double tip_wall = 0.0;
   void report_run(bigint nsteps) override;
+  void step_done() override;
 
   int nmax_d;
   double *phi, *phis, *alphas;

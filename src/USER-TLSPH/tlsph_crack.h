@@ -141,9 +141,10 @@ inline double mts_equivalent_K(double KI, double KII, double theta)
    no traction, so no line integral remains. The second integral is zero
    for a static field, and for a crack running steadily (the field moves
    with the tip: v = -V u_,1, a = V^2 u_,11); it is the inertia of a field
-   that changes as it moves; the crack tips leave it out (it needs each
-   particle's acceleration, a history: tlsph_crack_tips.cpp), so
-   j_integrand below is the first integral only. For a particle method A is
+   that changes as it moves (a stress wave passing a crack at rest). The
+   crack tips add it with 'jinertia yes' (tlsph_crack_tips.cpp);
+   j_integrand below is the first integral, j_inertia_force and
+   j_inertia_velocity the two parts of the second. For a particle method A is
    a sum over the particles' volumes; the integrand of one particle is
    j_integrand(...) (3 x 3 row-major tensors, z rows and columns zero in
    2D but F_33). In linear elasticity J = (K_I^2 + K_II^2) / E' for a crack
@@ -176,6 +177,30 @@ inline double j_integrand(const double *F, const double *P, double W, double rho
     j += He * (P[3 * i] * gq[0] + P[3 * i + 1] * gq[1] + P[3 * i + 2] * gq[2]);
   }
   return j;
+}
+
+/* The inertia term of J, one particle's share, in two parts (the crack
+   tips take them at different moments: the force where the step's forces
+   are known, the velocity's with the step's deformation):
+     rho0 V (a . H e) q = q (m a) . (H e), m a the particle's force f: per
+   reference direction K (x, y), out[K] = f . H_(:,K), so that the part is
+   q (out . e) once e is known;
+     rho0 V (v . L e) q = q m v . (L e), L = dv/dX (3 x 3 row-major), v its
+   velocity, returned for mv = m v. */
+inline void j_inertia_force(const double *F, const double *f, double *out)
+{
+  for (int K = 0; K < 2; K++) {
+    double s = 0.0;
+    for (int i = 0; i < 3; i++) s += f[i] * (F[3 * i + K] - (i == K ? 1.0 : 0.0));
+    out[K] = s;
+  }
+}
+
+inline double j_inertia_velocity(const double *L, const double *mv, const double *e)
+{
+  double s = 0.0;
+  for (int i = 0; i < 3; i++) s += mv[i] * (L[3 * i] * e[0] + L[3 * i + 1] * e[1] + L[3 * i + 2] * e[2]);
+  return s;
 }
 
 /* K_I and K_II from J and the displacement correlation's mode mix: J sets

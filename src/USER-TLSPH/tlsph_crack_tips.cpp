@@ -47,6 +47,7 @@ void TLSPHCrackTips::defaults()
   kfit = 0;
   jr1 = 2.0;
   jr2 = 4.0;
+  jinertia = 0;
   seg = 0.0;
   branch = 0.0;
   p_sample = 1.5;
@@ -79,6 +80,15 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
     else
       error->all(FLERR, "pair_style tlsph/damage: kfit must be 'tip', 'offset', 'j' or "
                         "'interaction', got '{}'", arg[iarg + 1]);
+    return 2;
+  }
+  if (key == "jinertia") {
+    if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: jinertia needs a value");
+    if (strcmp(arg[iarg + 1], "yes") == 0) jinertia = 1;
+    else if (strcmp(arg[iarg + 1], "no") == 0) jinertia = 0;
+    else
+      error->all(FLERR, "pair_style tlsph/damage: jinertia must be 'yes' or 'no', got '{}'",
+                 arg[iarg + 1]);
     return 2;
   }
   if (key == "jring") {
@@ -143,16 +153,17 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
    restart: the settings, then every tip with its path (identical on all
    ranks). tipdir and kfit share one value, tipdir + 2 kfit, 0 to 7 (files
    written before kfit read as kfit tip); tipmode + 2 marks the layout with the J ring after the six
-   (files written before it have tipmode 0 or 1 there and the default ring)
+   (files written before it have tipmode 0 or 1 there and the default ring), + 4 the ring and the
+   tipparam values, + 8 those and jinertia
 ------------------------------------------------------------------------- */
 
 void TLSPHCrackTips::write_restart(FILE *fp, int tipmode)
 {
-  double w[6] = {(double) tipmode + 4.0, (double) (tipdir_hoop + 2 * kfit), seg, branch,
+  double w[6] = {(double) tipmode + 8.0, (double) (tipdir_hoop + 2 * kfit), seg, branch,
                  (double) ready, (double) list.size()};
   fwrite(w, sizeof(double), 6, fp);
-  const double jr[7] = {jr1, jr2, p_sample, p_disc, p_hoopr, (double) p_window, p_split};
-  fwrite(jr, sizeof(double), 7, fp);
+  const double jr[8] = {jr1, jr2, p_sample, p_disc, p_hoopr, (double) p_window, p_split, (double) jinertia};
+  fwrite(jr, sizeof(double), 8, fp);
   for (const auto &tp : list) {
     std::vector<double> r = {(double) tp.path.size(), tp.t[0], tp.t[1], tp.seg, tp.own,
                              (double) tp.alive, (double) (tp.growing + 2 * tp.newborn)};
@@ -166,10 +177,12 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   double w[6];
   if (comm->me == 0) utils::sfread(FLERR, w, sizeof(double), 6, fp, nullptr, error);
   MPI_Bcast(w, 6, MPI_DOUBLE, 0, world);
-  // layouts: tipmode + 4: the ring and the tipparam values follow; + 2: the
-  // ring only; tipmode alone: neither (the defaults)
-  const int extra = (w[0] >= 4.0) ? 7 : (w[0] >= 2.0) ? 2 : 0;
-  if (extra == 7) w[0] -= 4.0;
+  // layouts: tipmode + 8: the ring, the tipparam values and jinertia
+  // follow; + 4: the ring and the tipparam values; + 2: the ring only;
+  // tipmode alone: none (the defaults)
+  const int extra = (w[0] >= 8.0) ? 8 : (w[0] >= 4.0) ? 7 : (w[0] >= 2.0) ? 2 : 0;
+  if (extra == 8) w[0] -= 8.0;
+  else if (extra == 7) w[0] -= 4.0;
   else if (extra == 2) w[0] -= 2.0;
   if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 7.0 && w[1] == std::floor(w[1])) &&
         w[2] >= 0.0 && w[3] < 2.0 && (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 &&
@@ -185,18 +198,20 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   ready = static_cast<int>(w[4]);
   depth_ready = 0;
   if (extra) {
-    double jr[7];
+    double jr[8];
     if (comm->me == 0) utils::sfread(FLERR, jr, sizeof(double), extra, fp, nullptr, error);
     MPI_Bcast(jr, extra, MPI_DOUBLE, 0, world);
     if (!(jr[0] >= 0.0 && jr[1] > jr[0] && jr[1] < 1.0e3) ||
-        (extra == 7 && !(jr[2] > 0.0 && jr[3] > 0.0 && jr[4] > 0.0 && jr[5] >= 1.0 && jr[6] > 0.0)))
+        (extra >= 7 && !(jr[2] > 0.0 && jr[3] > 0.0 && jr[4] > 0.0 && jr[5] >= 1.0 && jr[6] > 0.0)) ||
+        (extra == 8 && !(jr[7] == 0.0 || jr[7] == 1.0)))
       error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
                         "version's layout (written by another version of the package?)");
     jr1 = jr[0];
     jr2 = jr[1];
-    if (extra == 7) {
+    if (extra >= 7) {
       p_sample = jr[2], p_disc = jr[3], p_hoopr = jr[4], p_window = (int) jr[5], p_split = jr[6];
     }
+    if (extra == 8) jinertia = (int) jr[7];
   }
   list.assign(static_cast<size_t>(w[5]), CrackTip{});
   for (auto &tp : list) {
@@ -285,6 +300,7 @@ bool TLSPHCrackTips::stencil_current(std::vector<Stencil> &v, int a)
   st.idx.clear();
   st.slot.clear();
   st.w.clear();
+  st.q.clear();
   return false;
 }
 
@@ -416,11 +432,16 @@ void TLSPHCrackTips::find_tips()
    conservative hourglass form the stored P carries the hourglass term: P
    then comes from the law). The sums run over the particles in ascending
    order. The inertia term (the area integral of
-   rho0 (a . u_,1 - v . v_,1) q) is left out: it is zero for a crack at rest
-   and for one running steadily, and it falls with the domain (as r2^3/2
-   against J's r2^0), which shrinks with h; it would need each particle's
-   acceleration, a history that neither migrates with the atoms nor is in a
-   restart file, so the same run on other ranks or restarted would differ. */
+   rho0 (a . u_,1 - v . v_,1) q) is zero for a crack at rest and for one
+   running steadily, and it falls with the domain (as r2^3/2 against J's
+   r2^0), which shrinks with h; but a stress wave that passes a crack at
+   rest (a field that changes as it moves) makes J without it read an
+   energy release rate the crack does not have. 'jinertia yes' adds it: its
+   velocity part here, with this pass's velocities (those of T) and
+   L = dv/dX over each particle's intact bonds; its force part, f . H e q
+   (m a = f), is each tip's jf, summed at the end of the last step where
+   the step's forces are known (inertia_forces): one step behind, as the
+   acceleration, known only after the force pass, would be. */
 // how many particles ahead j_integrals fetches a domain particle's rows
 static constexpr int J_AHEAD = 6;
 
@@ -459,7 +480,8 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
         st.w.push_back(rmass[i]);
         const double r = std::sqrt(ex * ex + ey * ey);
         double dq;
-        TLSPH::ring_weight(r, r1, r2, &dq);
+        const double q = TLSPH::ring_weight(r, r1, r2, &dq);
+        if (jinertia) st.q.push_back(q);
         // (the inertia term, the only one with q, is left out, above: only
         // the ring r1 < r < r2, where grad q is not zero, adds to J)
         if (dq == 0.0) continue;
@@ -527,16 +549,79 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
         I2 += rw[4] * o[1];
       }
     }
+    if (jinertia) {
+      // the velocity part of the inertia term: - q m (v - vm) . (L e)
+      // over the whole disc (q = 1 inside r1); L over the intact bonds
+      const auto vrows = TLSPH::StridedRows{vs, 3};
+      const int nd = st.idx.size();
+      for (int m = 0; m < nd; m++) {
+        const int i = st.idx[m];
+        double L[9];
+        if (pair->dim == 2)
+          TLSPH::velocity_gradient_bonds<2>(vrows, i, pair->bonds_of<2>(i), pair->nbond[i], L);
+        else
+          TLSPH::velocity_gradient_bonds<3>(vrows, i, pair->bonds_of<3>(i), pair->nbond[i], L);
+        const double *vi = vs + 3 * (bigint) i, mi = st.w[m];
+        const double mv[3] = {mi * (vi[0] - vm[0]), mi * (vi[1] - vm[1]), mi * (vi[2] - vm[2])};
+        Ja -= st.q[m] * TLSPH::j_inertia_velocity(L, mv, e);
+      }
+    }
     mine[nw * a] = Ja;
     if (Imix) mine[nw * a + 1] = I1, mine[nw * a + 2] = I2;
   }
   MPI_Allreduce(mine.data(), all.data(), nw * nt, MPI_DOUBLE, MPI_SUM, world);
-  for (int a = 0; a < nt; a++) J[a] = all[nw * a] / depth;
+  for (int a = 0; a < nt; a++) {
+    double Ja = all[nw * a];
+    // the force part, summed at the end of the last step (all ranks)
+    if (jinertia) {
+      const CrackTip &tp = list[live[a]];
+      Ja += tp.jf[0] * dir[2 * a] + tp.jf[1] * dir[2 * a + 1];
+    }
+    J[a] = Ja / depth;
+  }
   if (Imix) {
     Imix->assign(2 * nt, 0.0);
     for (int a = 0; a < nt; a++)
       for (int m = 0; m < 2; m++) (*Imix)[2 * a + m] = all[nw * a + 1 + m] / depth;
   }
+}
+
+/* jinertia: each live tip's jf, the force part of J's inertia term
+   (tlsph_crack.h, j_inertia_force) summed over its J domain, q-weighted,
+   all ranks: at the end of every step of a run, and after the set-up force
+   of each (a run continued from a restart file, or split in two, takes it
+   again from the same forces); f is then the step's whole force, the
+   fixes' and the other ranks' shares included, and F that of its pass.
+   Zero outside a run (minimize: f is no inertia). */
+void TLSPHCrackTips::inertia_forces()
+{
+  if (!jinertia || kfit < 2 || !ready) return;
+  const int nt = list.size();
+  std::vector<double> mine(2 * nt, 0.0), all(2 * nt, 0.0);
+  if (update->whichflag == 1) {
+    refresh_cells();
+    double **f = atom->f;
+    const double r1 = jr1 * pair->h, r2 = jr2 * pair->h;
+    std::vector<int> near;
+    for (int a = 0; a < nt; a++) {
+      const CrackTip &tp = list[a];
+      if (!tp.alive) continue;
+      const auto &T = tp.path.back();
+      const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
+      particles_in_box(lo, hi, near);
+      for (int i : near) {
+        const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
+        if (ex * ex + ey * ey >= r2 * r2) continue;
+        double dq, o[2];
+        const double q = TLSPH::ring_weight(std::sqrt(ex * ex + ey * ey), r1, r2, &dq);
+        TLSPH::j_inertia_force(pair->F[i], f[i], o);
+        mine[2 * a] += q * o[0];
+        mine[2 * a + 1] += q * o[1];
+      }
+    }
+  }
+  MPI_Allreduce(mine.data(), all.data(), 2 * nt, MPI_DOUBLE, MPI_SUM, world);
+  for (int a = 0; a < nt; a++) list[a].jf[0] = all[2 * a], list[a].jf[1] = all[2 * a + 1];
 }
 
 double TLSPHCrackTips::sample_radius(int k) const

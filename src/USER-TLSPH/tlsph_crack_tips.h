@@ -40,6 +40,11 @@ struct CrackTip {
   double G = 0.0;                // energy release rate of the kink direction
   double kink = 0.0;             // kink angle of the maximum tangential stress [rad]
   double speed = 0.0;            // advance speed (0: not growing)
+  // jinertia: the force part of J's inertia term, per reference direction
+  // x, y (tlsph_crack.h, j_inertia_force), summed over the J domain at the
+  // end of the last step, all ranks (not in restart files: taken again from
+  // the set-up force of each run, inertia_forces)
+  double jf[2] = {0.0, 0.0};
 };
 
 class TLSPHCrackTips : protected Pointers {
@@ -74,6 +79,9 @@ class TLSPHCrackTips : protected Pointers {
   // every step after grow (pair_coeff strength): new cracks where the stress
   // reaches the strength (their bonds are cut by the next cut_newborn)
   void nucleate();
+  // jinertia: at the end of every step of a run and after its set-up force
+  // (f, F and the tips of the step just done), each tip's jf
+  void inertia_forces();
 
   const std::vector<CrackTip> &tips() const { return list; }
   double fracture_energy() const { return Gc; }
@@ -88,6 +96,7 @@ class TLSPHCrackTips : protected Pointers {
                     // 2 size from the domain J-integral (ratio: fit 0), 3 size from J,
                     // ratio from the interaction integrals over the same ring
   double jr1, jr2;  // kfit j, interaction: the J domain's ring, q = 1 inside r1, 0 beyond r2 [h]
+  int jinertia;     // kfit j, interaction: 1 adds the inertia term of the dynamic J-integral
   double seg;       // segment length in h (0: the sampling reach)
   double branch;    // half angle of a branching [rad] (0: never; < 0: 'yoffe')
   // tipparam: the tip model's numerical constants (scanned in bench/tipconst.md)
@@ -131,6 +140,7 @@ class TLSPHCrackTips : protected Pointers {
     std::vector<int> slot;                    // grow: the sample sum each adds to; j_integrals: the ring's
     std::vector<double> w;                    // grow: weight; j_integrals: mass (idx), then
                                               // gq x, gq y, ex, ey, volume, rho0 (slot)
+    std::vector<double> q;                    // j_integrals with jinertia: q of each of idx
     // a growing tip: the particles of a box larger than the sums need by h
     // each way (ascending), searched again only when the box the sums need
     // leaves it or the indices change; the sums filter them as the cell

@@ -448,6 +448,21 @@ TLSPH_INLINE void deformation_gradient_bonds(const Rows &x, int i, const Bonds &
     for (int c = 0; c < DIM; c++) F[3 * r + c] += Fa[DIM * r + c];
 }
 
+/* The velocity gradient L_i = dv/dX = sum_j (v_j - v_i) (x) g_ij (the rate
+   of F), 3 x 3 row-major, zero beyond DIM. v(j) returns v_j. */
+template <int DIM, class Rows, class Bonds>
+TLSPH_INLINE void velocity_gradient_bonds(const Rows &v, int i, const Bonds &b, int nb, double *L)
+{
+  const double *vi = v(i);
+  for (int k = 0; k < 9; k++) L[k] = 0.0;
+  for (int m = 0; m < nb; m++) {
+    const double *vj = v(b.partner(m));
+    const double *g = b.grad(m);
+    for (int r = 0; r < DIM; r++)
+      for (int c = 0; c < DIM; c++) L[3 * r + c] += (vj[r] - vi[r]) * g[c];
+  }
+}
+
 template <int DIM, class Rows>
 TLSPH_INLINE void deformation_gradient(const Rows &x, int i, const Bond *b, int nb, double *F)
 {

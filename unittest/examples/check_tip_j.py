@@ -81,7 +81,27 @@ examples.tip-j.merge.
   5.6e4 of the lateral stress), a limit of kfit j (doc/pair_tlsph_damage.rst)
   that this case does not test.
 
-    check_tip_j.py --lmp LMP --bench DIR --workdir DIR --case kcheck|mixed|speedlaw|kink|kalthoff|merge
+--case speedlaw-inertia: speedlaw with 'jinertia yes' (the same checks: for
+  a crack running steadily the inertia term of J is zero, tlsph_crack.h).
+
+--case merge-inertia: the same with kfit j and its inertia term ('jinertia
+  yes', the dynamic J-integral of Moran and Shih 1987). Theory: a slit
+  parallel to the load carries at most G = 0.1 J/m^2 < G_c (above) while
+  the central crack is far from it: the inertia term takes away what J
+  without it reads from the passing wave (a field that changes as it
+  moves), so no slit tip grows before the central tips have run half
+  the way to the slits (7.5 mm of the 15: the slit's ends then lie more
+  than 8 mm from them, beyond the central tip's J domain); without
+  'jinertia' they grow at 11.8 us, before the central tips start. Checks:
+  that; both central tips grow and come within one dx of the junctions
+  (with the slit inside its J domain, which the domain form does not
+  allow for, a central tip's J falls below zero just before it: it then
+  stands still within 0.15 mm of the slit, its bonds to the slit all
+  cut; the 'stops' message of merge is not asked for); no tip grows
+  before the wave reaches the central crack (9 us: 36 mm at c_L = 3.8
+  km/s from the loaded edges); the tips point-symmetric.
+
+    check_tip_j.py --lmp LMP --bench DIR --workdir DIR --case kcheck|mixed|speedlaw|kink|kalthoff|merge|merge-inertia
 Prints PASSED or FAILED (ctest matches PASSED) and exits 0 / 1.
 """
 
@@ -185,14 +205,15 @@ def energy_per_area(d):
     return -np.polyfit(d[:, 4], d[:, 6], 1)[0] - filt, filt, np.polyfit(d[:, 4], d[:, 9], 1)[0]
 
 
-def speedlaw(a):
+def speedlaw(a, jin="no"):
     checks = []
     for r in (1.5, 2.0):
         tag = os.path.join(a.workdir, f"strip-{r}")
         cmd = [os.path.abspath(a.lmp), "-in", os.path.join(a.bench, "in.toughness"), "-log", tag + ".log",
                "-screen", "none", "-var", "dx", "0.000333333333333", "-var", "crit", "tip", "-var", "kfit", "j",
                "-var", "G0", repr(3.0 * r), "-var", "alpha", "0.09", "-var", "alpha_d", "3.1",
-               "-var", "gamma", "0.0", "-var", "phic", "0.65", "-var", "eps", "0.1", "-var", "out", tag]
+               "-var", "gamma", "0.0", "-var", "phic", "0.65", "-var", "eps", "0.1", "-var", "out", tag,
+               "-var", "jin", jin]
         env = dict(os.environ, TLSPH_TIP_TRACE="1")
         import subprocess
         p = subprocess.run(cmd, capture_output=True, text=True, cwd=a.workdir, env=env)
@@ -314,16 +335,51 @@ def merge(a):
     return verdict(checks)
 
 
+def merge_inertia(a):
+    log = os.path.join(a.workdir, "merge-inertia.log")
+    cmd = [os.path.abspath(a.lmp), "-in", os.path.join(a.bench, "in.kcheck"), "-log", log, "-screen", "none",
+           "-var", "dx", "0.001", "-var", "mode", "I", "-var", "kfit", "j", "-var", "jin", "yes", "-var", "gc", "0.3",
+           "-var", "relax", "no", "-var", "branch", "0", "-var", "slit", "0.02", "-var", "chunk", "20",
+           "-var", "nchunk", "40"]
+    if not run_lammps(cmd, cwd=a.workdir):
+        return 1
+    text = open(log).read()
+    grows = {}
+    for m in re.finditer(r"step (\d+) t (\S+): tip (\d+) at .* grows", text):
+        grows.setdefault(int(m.group(3)), (int(m.group(1)), float(m.group(2))))
+    rows = [[float(v) for v in l.split()] for l in text.splitlines()
+            if len(l.split()) == 15 and re.match(r"^\d+$", l.split()[0])]
+    d = np.array(rows)    # step time KI1 KII1 KI2 KII2 E_strain E1 x1 y1 len1 x2 y2 len2 G1/Gc
+    sym = max(np.abs(d[:, 8] + d[:, 11]).max(), np.abs(d[:, 9] + d[:, 12]).max(), np.abs(d[:, 10] - d[:, 13]).max())
+    # the report row at which the central tips had run half the way (x <= -12.5 mm)
+    half = [int(r[0]) for r in rows if r[8] <= -0.0125]
+    half_step = half[0] if half else 10**9
+    first_slit = min((grows[t][0] for t in (2, 3, 4, 5) if t in grows), default=10**9)
+    first_any = min((g[1] for g in grows.values()), default=float("inf"))
+    print(f"merge-inertia: first growth {grows}, central tips half way by step {half_step}, "
+          f"at x = {d[-1, 8] * 1e3:.3f} / {d[-1, 11] * 1e3:.3f} mm at the end, symmetry {sym:.2g} m")
+    checks = [(f"no slit tip grows before the central tips ran half the way (step {half_step}; first slit "
+               f"growth at step {first_slit})", first_slit > half_step),
+              (f"the central tips within one dx of the junctions: x = {d[-1, 8] * 1e3:.3f} and "
+               f"{d[-1, 11] * 1e3:.3f} mm (slits at -+20)", d[-1, 8] <= -0.019 and d[-1, 11] >= 0.019),
+              (f"no tip grows before the wave reaches the crack (first at {first_any * 1e6:.2f} us > 9 us)",
+               first_any > 9e-6),
+              (f"the two tips point-symmetric ({sym:.2g} m <= 1e-7 m, the log's 8 digits)", sym <= 1e-7)]
+    return verdict(checks)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--lmp", required=True)
     ap.add_argument("--bench", required=True)
     ap.add_argument("--workdir", required=True)
-    ap.add_argument("--case", required=True, choices=["kcheck", "mixed", "speedlaw", "kink", "kalthoff", "merge"])
+    ap.add_argument("--case", required=True, choices=["kcheck", "mixed", "speedlaw", "kink", "kalthoff", "merge",
+                                                  "merge-inertia", "speedlaw-inertia"])
     a = ap.parse_args()
     os.makedirs(a.workdir, exist_ok=True)
     return {"kcheck": kcheck, "mixed": mixed, "speedlaw": speedlaw, "kink": kink, "kalthoff": kalthoff,
-            "merge": merge}[a.case](a)
+            "merge": merge, "merge-inertia": merge_inertia,
+            "speedlaw-inertia": lambda a: speedlaw(a, "yes")}[a.case](a)
 
 
 if __name__ == "__main__":

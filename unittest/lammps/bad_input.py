@@ -260,7 +260,7 @@ CASES = [
     ("pd_correction_bad", pds(f"{H} correction never"), {}, r"correction must be 'rebuild' or 'setup', got 'never'"),
     ("pd_tipseg_negative", pds(f"{H} criterion tip tipseg -1"), {}, r"tipseg must be >= 0"),
     ("pd_kfit_bad", pds(f"{H} criterion tip kfit best"), {}, r"pair_style tlsph/damage: kfit must be 'tip', 'offset', 'j' or 'interaction', got 'best'"),
-    ("pd_kfit_without_tip", pds(f"{H} kfit offset"), {}, r"branch, tipdir, tipseg, kfit, jring and tipparam are settings of 'criterion tip'"),
+    ("pd_kfit_without_tip", pds(f"{H} kfit offset"), {}, r"branch, tipdir, tipseg, kfit, jinertia, jring and tipparam are settings of 'criterion tip'"),
     ("pd_jring_order", pds(f"{H} criterion tip kfit j jring 4 2"), {}, r"jring must be two radii in h with 0 <= r1 < r2, got 4 2"),
     ("pd_jring_short", pds(f"{H} criterion tip jring 2"), {}, r"jring needs two values \(the J domain's inner and outer radius in h\)"),
     ("pd_tipparam_name", pds(f"{H} criterion tip tipparam radius 2"), {}, r"tipparam name must be sample, disc, hoopr, window or split, got 'radius'"),

@@ -159,6 +159,9 @@ def main():
                          "restart file)")
     ap.add_argument("--kfit", default="tip",
                     help="with --crit tip: pair_style tlsph/damage kfit (tip, offset, j or interaction)")
+    ap.add_argument("--jinertia", action="store_true",
+                    help="with --kfit j or interaction: 'jinertia yes' (the inertia term of J: "
+                         "its force part summed at the end of each step and at a run's set-up)")
     ap.add_argument("--gc", type=float, default=3.0, help="the glass's fracture energy [J/m^2]")
     ap.add_argument("--strength", type=float, default=0.0,
                     help="with --crit tip: pair_coeff strength [Pa] (crack nucleation; 0: none)")
@@ -174,6 +177,8 @@ def main():
 
     fam = ["-var", "family", repr(args.family)] if args.family > 0 else []
     fam += ["-var", "crit", args.crit, "-var", "kfit", args.kfit, "-var", "gc", repr(args.gc)]
+    if args.jinertia:
+        fam += ["-var", "jin", "yes"]
     if args.strength > 0:
         fam += ["-var", "strength", repr(args.strength)]
     if args.no_precrack:
