@@ -128,7 +128,8 @@ def main():
                f"{max(res['other_cracked'])}")
     if 'energy_excess_max' in info:
         es, wf = info['energy_final']
-        out.append(f"energy balance (thermo, every 2 us): strain + hourglass + viscous + kinetic energy at the "
+        out.append(f"energy balance (thermo, every 2 us): strain + hourglass + viscous + kinetic energy (less the "
+                   f"impactor's own, which fix move sets) at the "
                    f"end {es:.4g} J/m vs impactor work {wf:.4g} J/m; largest excess (E - W)/max W = "
                    f"{info['energy_excess_max']:+.3f} at {info['energy_excess_time'] * 1e6:.1f} us "
                    f"(must stay <= ~0: broken bonds only lose energy), first above +0.1 at "

@@ -407,8 +407,8 @@ def main():
     if 'energy_excess_max' in info:
         es, wf = info['energy_final']
         out.append('')
-        out.append(f"energy balance (thermo, every 2 us): strain + hourglass + viscous + kinetic energy at the "
-                   f"end {es:.4g} J vs impactor work {wf:.4g} J; largest excess (E - W)/max W = "
+        out.append(f"energy balance (thermo, every 2 us): strain + hourglass + viscous + kinetic energy (less the "
+                   f"impactor's own, which fix move sets) at the end {es:.4g} J vs impactor work {wf:.4g} J; largest excess (E - W)/max W = "
                    f"{info['energy_excess_max']:+.3f} at {info['energy_excess_time'] * 1e6:.1f} us "
                    f"(must stay <= ~0: broken bonds only lose energy), first above +0.1 at "
                    f"{us(info['energy_onset_time'])}; kinetic energy max "
