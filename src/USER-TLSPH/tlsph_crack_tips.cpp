@@ -482,8 +482,8 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
         double dq;
         const double q = TLSPH::ring_weight(r, r1, r2, &dq);
         if (jinertia) st.q.push_back(q);
-        // (the inertia term, the only one with q, is left out, above: only
-        // the ring r1 < r < r2, where grad q is not zero, adds to J)
+        // (the first integral: only the ring r1 < r < r2, where grad q is
+        // not zero; the inertia term, with q, over the whole disc: st.q)
         if (dq == 0.0) continue;
         st.slot.push_back(i);
         ring.insert(ring.end(), {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, ex, ey,
