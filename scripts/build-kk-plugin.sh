@@ -115,7 +115,10 @@ start=$(date +%s)
 ninja -C "$OUT" -j"$JOBS" >&2
 so="$OUT/tlsphkkplugin.so"
 # the properties the plugin relies on: an init function, -Bsymbolic, nodelete
-nm -D --defined-only "$so" | grep -q ' T lammpsplugin_init$' || die "$so exports no lammpsplugin_init"
+# (nm's list read whole first: under pipefail, grep -q leaving early would
+# end nm with SIGPIPE once the list outgrows the pipe's buffer, and fail)
+syms=$(nm -D --defined-only "$so")
+grep -q ' T lammpsplugin_init$' <<<"$syms" || die "$so exports no lammpsplugin_init"
 dyn=$(readelf -d "$so")
 grep -q 'SYMBOLIC' <<<"$dyn" || die "$so was not linked with -Bsymbolic"
 grep -q 'Flags:.*NODELETE' <<<"$dyn" || die "$so was not linked with -z nodelete"
