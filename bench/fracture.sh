@@ -60,6 +60,9 @@
 #   tip-yoffe-jin  tip-yoffe-j with the inertia term of the dynamic
 #              J-integral ('jinertia yes'); bench/kfit_inertia.sh
 #   tip-yoffe-iin  tip-yoffe-i with it
+#   tip-ystep-j, -jin, -i, -iin  the same four with 'branch yoffe/step':
+#              the branching condition tested at every step, not only
+#              where a segment starts
 #   tipc-NAME-VALUE  tip-yoffe with one constant of the tip model set to
 #              VALUE (NAME: seg = tipseg, or sample, disc, hoopr, window,
 #              split = pair_style tlsph/damage tipparam NAME); bench/tipconst.sh
@@ -134,6 +137,11 @@ vars_of() {    # setting [kalthoff|branching]
     tip-yoffe-j) echo "-var crit tip -var branch yoffe -var kfit j -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-yoffe-jin) echo "-var crit tip -var branch yoffe -var kfit j -var jin yes -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-yoffe-iin) echo "-var crit tip -var branch yoffe -var kfit interaction -var jin yes -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    tip-ystep-*)    # tip-ystep-j|jin|i|iin: as tip-yoffe-*, the branching tested at every step
+      local kf jn=no
+      case "${1#tip-ystep-}" in j) kf=j ;; jin) kf=j; jn=yes ;; i) kf=interaction ;; iin) kf=interaction; jn=yes ;;
+        *) echo "bench/fracture.sh: unknown setting '$1' (tip-ystep-j, -jin, -i, -iin)" >&2; return 1 ;; esac
+      echo "-var crit tip -var branch yoffe/step -var kfit $kf -var jin $jn -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-yoffe-i) echo "-var crit tip -var branch yoffe -var kfit interaction -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-nobranch) echo "-var crit tip -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-thesis) echo "-var crit tip -var branch 15" ;;
@@ -145,7 +153,7 @@ vars_of() {    # setting [kalthoff|branching]
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-ystep-j tip-ystep-jin tip-ystep-i tip-ystep-iin tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }

@@ -137,11 +137,15 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
       error->all(FLERR, "pair_style tlsph/damage: branch needs a value (half angle in degrees)");
     if (strcmp(arg[iarg + 1], "yoffe") == 0) {
       branch = -1.0;
+    } else if (strcmp(arg[iarg + 1], "yoffe/step") == 0) {
+      branch = -2.0;
     } else {
-      const double a = TLSPHInput::number(error, "pair_style tlsph/damage", key, arg[iarg + 1]);
+      // (a word other than these two gets the message that lists them)
+      const char *v = arg[iarg + 1];
+      const double a = utils::is_double(v) ? TLSPHInput::number(error, "pair_style tlsph/damage", key, v) : -1.0;
       if (!(a >= 0.0 && a < 90.0))
-        error->all(FLERR, "pair_style tlsph/damage: branch must be 'yoffe' or an angle in "
-                          "[0, 90) degrees, got {}", arg[iarg + 1]);
+        error->all(FLERR, "pair_style tlsph/damage: branch must be 'yoffe', 'yoffe/step' or an "
+                          "angle in [0, 90) degrees, got {}", arg[iarg + 1]);
       branch = a * M_PI / 180.0;
     }
     return 2;
@@ -185,7 +189,7 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   else if (extra == 7) w[0] -= 4.0;
   else if (extra == 2) w[0] -= 2.0;
   if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 7.0 && w[1] == std::floor(w[1])) &&
-        w[2] >= 0.0 && w[3] < 2.0 && (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 &&
+        w[2] >= 0.0 && (w[3] == -1.0 || w[3] == -2.0 || (w[3] >= 0.0 && w[3] < 2.0)) && (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 &&
         w[5] == std::floor(w[5]) && w[5] < 1.0e7))
     error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
                       "version's layout (written by another version of the package?)");
@@ -643,7 +647,9 @@ double TLSPHCrackTips::segment_length() const
 bool TLSPHCrackTips::may_read_hoop(int a, double seglen) const
 {
   const CrackTip &tp = list[a];
-  if (!tp.alive || tp.seg != 0.0) return false;
+  if (!tp.alive) return false;
+  if (branch < -1.5 && tp.own >= p_split * seglen) return true;    // yoffe/step: every step
+  if (tp.seg != 0.0) return false;
   return tipdir_hoop || (branch < 0.0 && tp.own >= p_split * seglen);
 }
 
@@ -976,28 +982,37 @@ void TLSPHCrackTips::grow()
   // instability of a fast crack); the branches take those two directions
   std::vector<double> bdir(2 * nt, 0.0);
   std::vector<int> bsplit(nt, 0);
-  const int yoffe = (branch < 0.0);
+  // ('branch yoffe/step': tested at every step, not only where a segment
+  // starts; the tips that read their hoop stress are then those of want
+  // and any other with G >= 2 G_c)
+  const int yoffe = (branch < 0.0), yoffe_step = (branch < -1.5);
   auto yoffe_candidate = [&](int a) {
-    return yoffe && Gt[a] >= 2.0 * Gc && list[a].own >= p_split * seglen;
+    return yoffe && Gt[a] >= 2.0 * Gc && list[a].own >= p_split * seglen &&
+        (yoffe_step || list[a].seg == 0.0);
   };
-  bool need_hoop = false;
-  for (int a : want) need_hoop = need_hoop || tipdir_hoop || yoffe_candidate(a);
-  if (need_hoop) {
+  std::vector<int> hw;    // the tips that read their hoop stress, ascending
+  {
+    size_t m = 0;
+    for (int a = 0; a < nt; a++) {
+      const bool in_want = m < want.size() && want[m] == a;
+      if (in_want) m++;
+      if ((in_want && tipdir_hoop) || yoffe_candidate(a)) hw.push_back(a);
+    }
+  }
+  if (!hw.empty()) {
     constexpr int NA = 33;
     const double rs = p_hoopr * pair->h, rh = pair->h, dth = 5.0 * M_PI / 180.0;
-    const int nw = want.size();
+    const int nw = hw.size();
     std::vector<double> hm(nw * NA * 4, 0.0), hs(nw * NA * 4, 0.0), ang(nw * NA);
     for (int w = 0; w < nw; w++) {
-      const CrackTip &tp = list[want[w]];
+      const CrackTip &tp = list[hw[w]];
       const double phi0 = atan2(tp.t[1], tp.t[0]);
       for (int j = 0; j < NA; j++) ang[w * NA + j] = phi0 + (j - NA / 2) * dth;
     }
     // each tip's sums over the particles near it, in ascending order, with
-    // their stress of the last step's pass (snapshot_hoop; only the tips
-    // whose hoop stress is read below)
+    // their stress of the last step's pass (snapshot_hoop)
     for (int w = 0; w < nw; w++) {
-      const int a = want[w];
-      if (!(tipdir_hoop || yoffe_candidate(a))) continue;
+      const int a = hw[w];
       const HoopSnap *hs = a < (int) hoop_snap.size() ? &hoop_snap[a] : nullptr;
       if (!hs || hs->step != update->ntimestep)
         error->one(FLERR, "pair tlsph/damage: internal: no hoop stress kept for tip {} at step {}", a,
@@ -1038,7 +1053,7 @@ void TLSPHCrackTips::grow()
         }
         return phi;
       };
-      const int a = want[w];
+      const int a = hw[w];
       if (tipdir_hoop) {
         int jm = 0;
         for (int j = 1; j < NA; j++)
@@ -1083,7 +1098,11 @@ void TLSPHCrackTips::grow()
     const double v = TLSPH::freund_speed(G, Gc, cR);
     tp.speed = v;
     double P[2] = {tp.path.back()[0], tp.path.back()[1]};
-    if (tp.seg == 0.0) {
+    // a split ('branch A' where a segment starts, 'branch yoffe' where the
+    // hoop stress has two maxima: at a segment's start, or with yoffe/step
+    // at any step) or a new segment
+    const bool split = bsplit[a] || (branch > 0.0 && tp.seg == 0.0 && G >= 2.0 * Gc && tp.own >= p_split * seglen);
+    if (tp.seg == 0.0 || split) {
       const double t0 = nd[2 * a], t1 = nd[2 * a + 1];
       if (comm->me == 0 && !tp.growing)
         utils::logmesg(lmp, "pair tlsph/damage: step {} t {:.6g}: tip {} at ({:.6g}, {:.6g}) "
@@ -1091,7 +1110,7 @@ void TLSPHCrackTips::grow()
                        update->atime + (update->ntimestep - update->atimestep) * dt, a, P[0], P[1],
                        Kt[2 * a], Kt[2 * a + 1], tht[a] * 180.0 / M_PI);
       tp.growing = 1;
-      if ((branch > 0.0 && G >= 2.0 * Gc && tp.own >= p_split * seglen) || bsplit[a]) {
+      if (split) {
         for (int sgn = -1; sgn <= 1; sgn += 2) {
           CrackTip b = tp;
           if (bsplit[a]) {
@@ -1116,6 +1135,9 @@ void TLSPHCrackTips::grow()
                          G / Gc);
         continue;
       }
+    }
+    if (tp.seg == 0.0) {
+      const double t0 = nd[2 * a], t1 = nd[2 * a + 1];
       tp.t[0] = t0;
       tp.t[1] = t1;
       tp.path.push_back({P[0], P[1]});

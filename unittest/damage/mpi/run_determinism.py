@@ -162,6 +162,10 @@ def main():
     ap.add_argument("--jinertia", action="store_true",
                     help="with --kfit j or interaction: 'jinertia yes' (the inertia term of J: "
                          "its force part summed at the end of each step and at a run's set-up)")
+    ap.add_argument("--branch", default="yoffe",
+                    help="with --crit tip: pair_style tlsph/damage branch (yoffe or yoffe/step)")
+    ap.add_argument("--branches", type=int, default=0,
+                    help="fail unless the first run logs at least this many branchings")
     ap.add_argument("--gc", type=float, default=3.0, help="the glass's fracture energy [J/m^2]")
     ap.add_argument("--strength", type=float, default=0.0,
                     help="with --crit tip: pair_coeff strength [Pa] (crack nucleation; 0: none)")
@@ -179,6 +183,8 @@ def main():
     fam += ["-var", "crit", args.crit, "-var", "kfit", args.kfit, "-var", "gc", repr(args.gc)]
     if args.jinertia:
         fam += ["-var", "jin", "yes"]
+    if args.branch != "yoffe":
+        fam += ["-var", "branch", args.branch]
     if args.strength > 0:
         fam += ["-var", "strength", repr(args.strength)]
     if args.no_precrack:
@@ -218,6 +224,13 @@ def main():
                   for i in pfinal)
     problems += ["precrack_only: %s" % p for p in prob]
 
+    if results and args.branches > 0:
+        with open(os.path.join(args.workdir, results[0][0] + ".out")) as fp:
+            nsplit = len(re.findall(r"branches \(G", fp.read()))
+        print("%s: %d branchings logged" % (results[0][0], nsplit))
+        if nsplit < args.branches:
+            problems.append("%s logs %d branchings, fewer than %d: the test does not reach what it "
+                            "tests" % (results[0][0], nsplit, args.branches))
     if results and pre is not None:
         ref_tag, ref = results[0]
         cols, a = ref
