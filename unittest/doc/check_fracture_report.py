@@ -18,9 +18,9 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from checks import verdict  # noqa: E402  (unittest/examples/checks.py)
 
 
-def kalthoff(angle, speed=1700.0, diff=0.0):
+def kalthoff(angle, speed=1700.0, diff=0.0, side=0):
     c = dict(angle_deg=angle, initiation_time=15e-6, speed_max=speed,
-             edge_reached_time={"ymax": 80e-6})
+             edge_reached_time={"ymax": 80e-6}, branches_final=1, side_branches_max=side)
     lo = dict(c, angle_deg=angle - diff)
     return {"cracks": {"upper": c, "lower": lo}, "symmetry": {"angle_diff_deg": diff}}
 
@@ -53,7 +53,8 @@ def main():
     # setting 'bad': each criterion missed once
     for mm, ang, sp, d in (("1.67", 72.04, 1700.0, 0.0), ("1", 65.0, 2900.0, 0.0),
                            ("0.5", 66.0, 1700.0, 2.5)):
-        write(os.path.join(out, "bad"), f"kalthoff-{mm}", kalthoff(ang, sp, d), "def5678 fake")
+        write(os.path.join(out, "bad"), f"kalthoff-{mm}", kalthoff(ang, sp, d, side=int(mm == "1")),
+              "def5678 fake")
     write(os.path.join(out, "bad"), "branching-0.5", branching(45.5e-6), "def5678 fake")
     write(os.path.join(out, "bad"), "branching-0.333", branching(30e-6, nfin=3, side=1, two=None),
           "def5678 fake")
@@ -76,6 +77,9 @@ def main():
         ("bad: a tip at 2900 m/s is above the Rayleigh speed", "tip speed 2900 m/s at 1 mm" in bad),
         ("bad: a mirror difference of 2.5 deg fails", "mirror difference 2.5 at 0.5 mm" in bad),
         ("bad: 3 resolutions (4 asked)", "3 resolution(s) (4 asked)" in bad),
+        ("bad: a Kalthoff crack with a short side branch fails (one crack per notch)",
+         "branched at 1 mm (1 branch(es) at the end, 1 short side branch(es))" in bad
+         and "branched" not in good),
         ("bad: branching at 45.5 us is outside the window", "branching at 45.5 us at 0.5 mm" in bad),
         ("bad: 3 branches, a side branch, not both at the right edge",
          "3 branches at the end at 0.333 mm" in bad and "1 side branches at 0.333 mm" in bad
