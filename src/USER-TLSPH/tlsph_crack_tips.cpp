@@ -449,6 +449,62 @@ void TLSPHCrackTips::find_tips()
 // how many particles ahead j_integrals fetches a domain particle's rows
 static constexpr int J_AHEAD = 6;
 
+/* tip a's J domain (j_st[a]), made again when the tip moved or the
+   particle indices changed: the particles within r2 of its end, ascending,
+   their mass, with jinertia their q, and for the ring r1 < r < r2 (where
+   grad q is not zero) its particles and their gq, ex, ey, volume, rho0.
+   j_integrals and inertia_forces share it: a tip that moves in a step gets
+   its new domain at the step's end, which the next step's J then reads. */
+const TLSPHCrackTips::Stencil &TLSPHCrackTips::j_stencil(int a)
+{
+  const bool have = stencil_current(j_st, a);
+  Stencil &st = j_st[a];
+  if (have) return st;
+  const double *vfrac = atom->vfrac, *rmass = atom->rmass;
+  const double r1 = jr1 * pair->h, r2 = jr2 * pair->h;
+  const auto &T = list[a].path.back();
+  const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
+  const std::vector<int> &near = candidates(st, lo, hi);
+  std::vector<double> ring;
+  for (int i : near) {
+    const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
+    if (ex * ex + ey * ey >= r2 * r2) continue;
+    st.idx.push_back(i);
+    st.w.push_back(rmass[i]);
+    const double r = std::sqrt(ex * ex + ey * ey);
+    double dq;
+    const double q = TLSPH::ring_weight(r, r1, r2, &dq);
+    if (jinertia) st.q.push_back(q);
+    // (the first integral: only the ring r1 < r < r2, where grad q is
+    // not zero; the inertia term, with q, over the whole disc: st.q)
+    if (dq == 0.0) continue;
+    st.slot.push_back(i);
+    ring.insert(ring.end(), {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, ex, ey,
+                             vfrac[i], rmass[i] / vfrac[i]});
+  }
+  st.w.insert(st.w.end(), ring.begin(), ring.end());
+  return st;
+}
+
+const double *TLSPHCrackTips::bond_grads(int i)
+{
+  GradCache &gc = gcache;
+  const int nlocal = atom->nlocal, dim = pair->dim, nb = pair->nbond[i];
+  if (gc.stamp != cells.stamp) {
+    gc.stamp = cells.stamp;
+    gc.off.assign(nlocal, -1);
+    gc.nb.assign(nlocal, -1);
+    gc.g.clear();
+  }
+  if (gc.off[i] >= 0 && gc.nb[i] == nb) return gc.g.data() + gc.off[i];
+  const double *g, *w;
+  pair->bond_values(i, g, w);
+  gc.off[i] = gc.g.size();
+  gc.nb[i] = nb;
+  gc.g.insert(gc.g.end(), g, g + (long) dim * nb);
+  return gc.g.data() + gc.off[i];
+}
+
 void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector<double> &dir,
                                  std::vector<double> &J, std::vector<double> *Imix)
 {
@@ -457,8 +513,6 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
   // kfit interaction: per tip J, then the interaction integrals of modes I and II
   const int nw = Imix ? 3 : 1;
   double **v = atom->v;
-  const double *vfrac = atom->vfrac, *rmass = atom->rmass;
-  const double r1 = jr1 * pair->h, r2 = jr2 * pair->h;
   // the stored P is the law's unless the conservative hourglass term is in it
   const bool law_P = pair->hg_form == 2 && pair->gamma != 0.0;
   // each domain's particles, and its momentum and mass (all ranks): J is
@@ -470,31 +524,7 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
   // stands, Stencil; gq zero inside r1)
   std::vector<double> pm(4 * nt, 0.0), pmall(4 * nt, 0.0);
   for (int a = 0; a < nt; a++) {
-    const bool have = stencil_current(j_st, live[a]);
-    Stencil &st = j_st[live[a]];
-    if (!have) {
-      const auto &T = list[live[a]].path.back();
-      const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
-      const std::vector<int> &near = candidates(st, lo, hi);
-      std::vector<double> ring;
-      for (int i : near) {
-        const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
-        if (ex * ex + ey * ey >= r2 * r2) continue;
-        st.idx.push_back(i);
-        st.w.push_back(rmass[i]);
-        const double r = std::sqrt(ex * ex + ey * ey);
-        double dq;
-        const double q = TLSPH::ring_weight(r, r1, r2, &dq);
-        if (jinertia) st.q.push_back(q);
-        // (the first integral: only the ring r1 < r < r2, where grad q is
-        // not zero; the inertia term, with q, over the whole disc: st.q)
-        if (dq == 0.0) continue;
-        st.slot.push_back(i);
-        ring.insert(ring.end(), {r > 0.0 ? dq * ex / r : 0.0, r > 0.0 ? dq * ey / r : 0.0, ex, ey,
-                                 vfrac[i], rmass[i] / vfrac[i]});
-      }
-      st.w.insert(st.w.end(), ring.begin(), ring.end());
-    }
+    const Stencil &st = j_stencil(live[a]);
     // (in registers: the same sums in the same order)
     const int nd = st.idx.size();
     double p0 = 0.0, p1 = 0.0, p2 = 0.0, ms = 0.0;
@@ -561,10 +591,11 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
       for (int m = 0; m < nd; m++) {
         const int i = st.idx[m];
         double L[9];
+        const double *g = bond_grads(i);
         if (pair->dim == 2)
-          TLSPH::velocity_gradient_bonds<2>(vrows, i, pair->bonds_of<2>(i), pair->nbond[i], L);
+          TLSPH::velocity_gradient_bonds<2>(vrows, i, pair->bond_view<2>(i, g, nullptr), pair->nbond[i], L);
         else
-          TLSPH::velocity_gradient_bonds<3>(vrows, i, pair->bonds_of<3>(i), pair->nbond[i], L);
+          TLSPH::velocity_gradient_bonds<3>(vrows, i, pair->bond_view<3>(i, g, nullptr), pair->nbond[i], L);
         const double *vi = vs + 3 * (bigint) i, mi = st.w[m];
         const double mv[3] = {mi * (vi[0] - vm[0]), mi * (vi[1] - vm[1]), mi * (vi[2] - vm[2])};
         Ja -= st.q[m] * TLSPH::j_inertia_velocity(L, mv, e);
@@ -605,22 +636,16 @@ void TLSPHCrackTips::inertia_forces()
   if (update->whichflag == 1) {
     refresh_cells();
     double **f = atom->f;
-    const double r1 = jr1 * pair->h, r2 = jr2 * pair->h;
-    std::vector<int> near;
+    // (the domain that the next step's J reads: j_stencil)
     for (int a = 0; a < nt; a++) {
-      const CrackTip &tp = list[a];
-      if (!tp.alive) continue;
-      const auto &T = tp.path.back();
-      const double lo[2] = {T[0] - r2, T[1] - r2}, hi[2] = {T[0] + r2, T[1] + r2};
-      particles_in_box(lo, hi, near);
-      for (int i : near) {
-        const double ex = pair->x0c[i][0] - T[0], ey = pair->x0c[i][1] - T[1];
-        if (ex * ex + ey * ey >= r2 * r2) continue;
-        double dq, o[2];
-        const double q = TLSPH::ring_weight(std::sqrt(ex * ex + ey * ey), r1, r2, &dq);
+      if (!list[a].alive) continue;
+      const Stencil &st = j_stencil(a);
+      for (size_t m = 0; m < st.idx.size(); m++) {
+        const int i = st.idx[m];
+        double o[2];
         TLSPH::j_inertia_force(pair->F[i], f[i], o);
-        mine[2 * a] += q * o[0];
-        mine[2 * a + 1] += q * o[1];
+        mine[2 * a] += st.q[m] * o[0];
+        mine[2 * a + 1] += st.q[m] * o[1];
       }
     }
   }

@@ -149,7 +149,20 @@ class TLSPHCrackTips : protected Pointers {
     double clo[2] = {0.0, 0.0}, chi[2] = {-1.0, -1.0};
     std::array<int, 2> cstamp = {-1, -1};
   };
+  /* jinertia: the corrected gradients of the bonds of the J domains'
+     particles, kept per local particle while its bonds and the indices
+     hold (cells.stamp, nbond): where the SIMD step keeps them only in its
+     layout, bonds_of computes them again from Q_i at every call (its
+     kernel and correction), which was most of the inertia term's cost */
+  struct GradCache {
+    std::array<int, 2> stamp = {-1, -1};
+    std::vector<long> off;    // per local particle: its gradients in g (-1: none)
+    std::vector<int> nb;      // its intact bonds when they were kept
+    std::vector<double> g;
+  } gcache;
+  const double *bond_grads(int i);    // particle i's DIM x nbond[i] gradients
   std::vector<Stencil> sample_st, j_st;    // per tip (its index in list)
+  const Stencil &j_stencil(int a);         // tip a's J domain, made again if stale
   // true (and st kept) if st was made for tip a as it is; else st emptied and stamped for it
   bool stencil_current(std::vector<Stencil> &v, int a);
   // the particles whose reference position may lie in [lo, hi]: st's candidates
