@@ -142,7 +142,8 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
     } else {
       // (a word other than these two gets the message that lists them)
       const char *v = arg[iarg + 1];
-      const double a = utils::is_double(v) ? TLSPHInput::number(error, "pair_style tlsph/damage", key, v) : -1.0;
+      const double a =
+          utils::is_double(v) ? TLSPHInput::number(error, "pair_style tlsph/damage", key, v) : -1.0;
       if (!(a >= 0.0 && a < 90.0))
         error->all(FLERR, "pair_style tlsph/damage: branch must be 'yoffe', 'yoffe/step' or an "
                           "angle in [0, 90) degrees, got {}", arg[iarg + 1]);
@@ -189,7 +190,8 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   else if (extra == 7) w[0] -= 4.0;
   else if (extra == 2) w[0] -= 2.0;
   if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 7.0 && w[1] == std::floor(w[1])) &&
-        w[2] >= 0.0 && (w[3] == -1.0 || w[3] == -2.0 || (w[3] >= 0.0 && w[3] < 2.0)) && (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 &&
+        w[2] >= 0.0 && (w[3] == -1.0 || w[3] == -2.0 || (w[3] >= 0.0 && w[3] < 2.0)) &&
+        (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 &&
         w[5] == std::floor(w[5]) && w[5] < 1.0e7))
     error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
                       "version's layout (written by another version of the package?)");
@@ -593,9 +595,11 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
         double L[9];
         const double *g = bond_grads(i);
         if (pair->dim == 2)
-          TLSPH::velocity_gradient_bonds<2>(vrows, i, pair->bond_view<2>(i, g, nullptr), pair->nbond[i], L);
+          TLSPH::velocity_gradient_bonds<2>(vrows, i, pair->bond_view<2>(i, g, nullptr),
+                                            pair->nbond[i], L);
         else
-          TLSPH::velocity_gradient_bonds<3>(vrows, i, pair->bond_view<3>(i, g, nullptr), pair->nbond[i], L);
+          TLSPH::velocity_gradient_bonds<3>(vrows, i, pair->bond_view<3>(i, g, nullptr),
+                                            pair->nbond[i], L);
         const double *vi = vs + 3 * (bigint) i, mi = st.w[m];
         const double mv[3] = {mi * (vi[0] - vm[0]), mi * (vi[1] - vm[1]), mi * (vi[2] - vm[2])};
         Ja -= st.q[m] * TLSPH::j_inertia_velocity(L, mv, e);
@@ -1126,7 +1130,8 @@ void TLSPHCrackTips::grow()
     // a split ('branch A' where a segment starts, 'branch yoffe' where the
     // hoop stress has two maxima: at a segment's start, or with yoffe/step
     // at any step) or a new segment
-    const bool split = bsplit[a] || (branch > 0.0 && tp.seg == 0.0 && G >= 2.0 * Gc && tp.own >= p_split * seglen);
+    const bool split =
+        bsplit[a] || (branch > 0.0 && tp.seg == 0.0 && G >= 2.0 * Gc && tp.own >= p_split * seglen);
     if (tp.seg == 0.0 || split) {
       const double t0 = nd[2 * a], t1 = nd[2 * a + 1];
       if (comm->me == 0 && !tp.growing)
