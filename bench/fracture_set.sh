@@ -18,8 +18,7 @@ shift 2
 export KDX="${KDX-1.67 1.33 1.11 1.0 0.833 0.667 0.5}" BDX="${BDX-0.5 0.333 0.286 0.222}" NO_REPORT=1
 mkdir -p "$HERE/out"
 k=0
-set -- "$@" ""    # (an odd count: the last pair has one setting)
-settings=("${@:1:$#-1}")
+settings=("$@")    # (an odd count: the last pair has one setting)
 for ((i = 0; i < ${#settings[@]}; i += 2)); do
   pids=()
   for s in "${settings[@]:i:2}"; do
