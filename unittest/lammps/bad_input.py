@@ -268,7 +268,7 @@ CASES = [
     ("pd_tipparam_window", pds(f"{H} criterion tip tipparam window 90"), {}, r"tipparam window must be a whole number of degrees in \[1, 80\], got 90"),
     ("pd_tipparam_short", pds(f"{H} criterion tip tipparam split"), {}, r"tipparam needs a name and a value \(names: sample, disc, hoopr, window, split\)"),
     ("pd_jring_word", pds(f"{H} criterion tip jring 2 far"), {}, r"pair_style tlsph/damage: jring needs a number, got 'far'"),
-    ("pd_branch_word", pds(f"{H} criterion tip branch wide"), {}, r"pair_style tlsph/damage: branch needs a number, got 'wide'"),
+    ("pd_branch_word", pds(f"{H} criterion tip branch wide"), {}, r"pair_style tlsph/damage: branch must be 'yoffe', 'yoffe/step' or an angle in \[0, 90\) degrees, got wide"),
     ("pd_tipdir_missing", pds(f"{H} criterion tip tipdir"), {}, r"tipdir needs a value"),
     ("pd_tip_3d_not_through", pds(f"{H} criterion tip precrack 0.002 0.002 0.002 0.004 0.002 0.002 0.002 0.004 0.002", dim=3,
                                   coeff="pair_coeff * * E 210e9 nu 0.3 rho 7800 Gc 1000\n"), {},
