@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Can a threshold on G separate the fracture benchmarks? The recommended
+# model without branching, without and with J's inertia term (bench/fracture.sh
+# settings tipg-j, tipg-jin), on
+# Kalthoff-Winkler 2D at KDX and the glass plate at BDX, the two decks at
+# once (one per core), then the report bench/branch-g.md (bench/branch_g.py,
+# with bench/branch-g-notes.md after its title). Runs are resumable (FORCE=1
+# makes them again): bench/out/fracture/tipg-j/ and tipg-jin/.
+#   bash bench/branch_g.sh
+set -euo pipefail
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+mkdir -p "$HERE/out"
+for s in tipg-j tipg-jin; do
+  KDX="${KDX-1.67 1.33 1.11 1.0 0.833 0.667 0.5}" BDX="" NO_REPORT=1 \
+    bash "$HERE/fracture.sh" "$s" > "$HERE/out/branch-g-$s-k.txt" 2>&1 &
+  k=$!
+  KDX="" BDX="${BDX-0.5 0.333 0.286 0.222}" NO_REPORT=1 \
+    bash "$HERE/fracture.sh" "$s" > "$HERE/out/branch-g-$s-b.txt" 2>&1 &
+  b=$!
+  wait "$k" "$b"
+done
+/usr/bin/python3 "$HERE/branch_g.py" --out "$HERE/out/fracture" --doc "$HERE/branch-g.md" tipg-j tipg-jin
