@@ -53,6 +53,31 @@ def running_mean(t, g):
     return np.convolve(g, np.ones(n) / n, mode="valid")
 
 
+def segments(x, y, g):
+    """The straight segments a tip grew (runs of one direction of motion):
+    their directions [deg], the kinks between them [deg], and G/G_c averaged
+    over each segment's first quarter of steps and over the rest (segments of
+    8 steps or more)."""
+    dx, dy = np.diff(x), np.diff(y)
+    mv = np.nonzero(np.hypot(dx, dy) > 1e-9)[0]
+    if len(mv) < 2:
+        return None
+    ang = np.degrees(np.arctan2(dy[mv], dx[mv]))
+    b = [0] + list(np.nonzero(np.abs(np.diff(ang)) > 0.05)[0] + 1) + [len(ang)]
+    dirs = [ang[b[k]:b[k + 1]].mean() for k in range(len(b) - 1)]
+    first, rest = [], []
+    for k in range(1, len(b) - 1):
+        rec = mv[b[k]:b[k + 1]] + 1    # the records after each move of the segment
+        if len(rec) >= 8:
+            q = len(rec) // 4
+            first.append(g[rec[:q]].mean())
+            rest.append(g[rec[q:]].mean())
+    return dict(dirs=np.array(dirs), kinks=np.abs(np.diff(dirs)),
+                p5=np.percentile(ang, 5), p95=np.percentile(ang, 95),
+                gfirst=np.mean(first) if first else float("nan"),
+                grest=np.mean(rest) if rest else float("nan"))
+
+
 def finished(tips):
     """the run of this .tips file ended (its log has LAMMPS's last line)"""
     log = tips[:-len(".tips")] + ".log"
@@ -84,7 +109,8 @@ def measure(out):
             kw[mm_of(f)] = dict(n=len(g), gmax=g.max(), gmean=running_mean(d[sel, 0], g).max(),
                                 tmax=d[sel, 0][g.argmax()], ymax=d[sel, 2][g.argmax()],
                                 f2=np.mean(g >= 2.0), med=np.median(g),
-                                mirror=np.max(np.abs(d[:, 4] - d[:, 8])))
+                                mirror=np.max(np.abs(d[:, 4] - d[:, 8])),
+                                seg=segments(d[:, 1], d[:, 2], d[:, 4]))
     for f in filter(finished, glob.glob(os.path.join(out, "branching-*.tips"))):
         d = np.loadtxt(f, ndmin=2)    # time, x y length G/Gc speed of the pre-crack's tip
         t, g = d[:, 0], d[:, 4]
@@ -106,6 +132,20 @@ def section(setting, kw, pl):
         r = kw[m]
         L.append(f"| {m} | {r['n']} | {r['gmax']:.2f} | {r['tmax'] * 1e6:.1f} | {r['ymax'] * 1e3:.1f} | "
                  f"{r['gmean']:.2f} | {r['med']:.2f} | {100 * r['f2']:.0f} % | {r['mirror']:.2g} |")
+    L += ["", "The same tips' path: the straight segments they grew (the tip model's segments, "
+          "each kinked by the maximum tangential stress rule where it starts), the directions "
+          "of their steps from the x axis, and G/G_c over each segment's first quarter of steps "
+          "against its rest:", "",
+          "| dx [mm] | segments | directions, 5th-95th percentile of the steps [deg] | "
+          "mean step direction [deg] | kink between segments, mean / largest [deg] | "
+          "G/G_c first quarter / rest |", "|---|---:|---|---:|---|---|"]
+    for m in rows_k:
+        q = kw[m]["seg"]
+        if q is None:
+            continue
+        L.append(f"| {m} | {len(q['dirs'])} | {q['p5']:.1f}-{q['p95']:.1f} | "
+                 f"{np.average(q['dirs']):.1f} | {q['kinks'].mean():.1f} / {q['kinks'].max():.1f} | "
+                 f"{q['gfirst']:.2f} / {q['grest']:.2f} |")
     L += ["", "The glass plate, the pre-crack's tip (unbranched):", "",
           f"| dx [mm] | largest G/G_c before {BR_LO * 1e6:g} us | before {BR_HI * 1e6:g} us | at [us] | "
           f"largest {WINDOW * 1e6:g} us mean before {BR_HI * 1e6:g} us | over the run (90 us) "
