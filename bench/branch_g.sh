@@ -1,16 +1,17 @@
 #!/usr/bin/env bash
 # Can a threshold on G separate the fracture benchmarks? The recommended
-# model without branching, without and with J's inertia term (bench/fracture.sh
-# settings tipg-j, tipg-jin), on
+# model without branching, without and with J's inertia term, and with
+# segments of 9 and 18 h (bench/fracture.sh settings tipg-j, tipg-jin,
+# tipg-j-seg-9, tipg-j-seg-18), on
 # Kalthoff-Winkler 2D at KDX and the glass plate at BDX, the two decks at
 # once (one per core), then the report bench/branch-g.md (bench/branch_g.py,
 # with bench/branch-g-notes.md after its title). Runs are resumable (FORCE=1
-# makes them again): bench/out/fracture/tipg-j/ and tipg-jin/.
+# makes them again): bench/out/fracture/tipg-*/.
 #   bash bench/branch_g.sh
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mkdir -p "$HERE/out"
-for s in tipg-j tipg-jin; do
+for s in tipg-j tipg-jin tipg-j-seg-9 tipg-j-seg-18; do
   KDX="${KDX-1.67 1.33 1.11 1.0 0.833 0.667 0.5}" BDX="" NO_REPORT=1 \
     bash "$HERE/fracture.sh" "$s" > "$HERE/out/branch-g-$s-k.txt" 2>&1 &
   k=$!
@@ -19,4 +20,4 @@ for s in tipg-j tipg-jin; do
   b=$!
   wait "$k" "$b"
 done
-/usr/bin/python3 "$HERE/branch_g.py" --out "$HERE/out/fracture" --doc "$HERE/branch-g.md" tipg-j tipg-jin
+/usr/bin/python3 "$HERE/branch_g.py" --out "$HERE/out/fracture" --doc "$HERE/branch-g.md" tipg-j tipg-jin tipg-j-seg-9 tipg-j-seg-18
