@@ -72,7 +72,7 @@ def segments(x, y, g):
             q = len(rec) // 4
             first.append(g[rec[:q]].mean())
             rest.append(g[rec[q:]].mean())
-    return dict(dirs=np.array(dirs), kinks=np.abs(np.diff(dirs)),
+    return dict(dirs=np.array(dirs), kinks=np.abs(np.diff(dirs)), mean=ang.mean(),
                 p5=np.percentile(ang, 5), p95=np.percentile(ang, 95),
                 gfirst=np.mean(first) if first else float("nan"),
                 grest=np.mean(rest) if rest else float("nan"))
@@ -144,7 +144,7 @@ def section(setting, kw, pl):
         if q is None:
             continue
         L.append(f"| {m} | {len(q['dirs'])} | {q['p5']:.1f}-{q['p95']:.1f} | "
-                 f"{np.average(q['dirs']):.1f} | {q['kinks'].mean():.1f} / {q['kinks'].max():.1f} | "
+                 f"{q['mean']:.1f} | {q['kinks'].mean():.1f} / {q['kinks'].max():.1f} | "
                  f"{q['gfirst']:.2f} / {q['grest']:.2f} |")
     L += ["", "The glass plate, the pre-crack's tip (unbranched):", "",
           f"| dx [mm] | largest G/G_c before {BR_LO * 1e6:g} us | before {BR_HI * 1e6:g} us | at [us] | "
