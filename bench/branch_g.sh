@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Can a threshold on G separate the fracture benchmarks? The recommended
 # model without branching, without and with J's inertia term, and with
-# segments of 9 and 18 h (bench/fracture.sh settings tipg-j, tipg-jin,
-# tipg-j-seg-9, tipg-j-seg-18), on
+# segments of 9 and 18 h, and with the mode ratio from the interaction
+# integrals (bench/fracture.sh settings tipg-j, tipg-jin, tipg-j-seg-9,
+# tipg-j-seg-18, tipg-i), on
 # Kalthoff-Winkler 2D at KDX and the glass plate at BDX, the two decks at
 # once (one per core), then the report bench/branch-g.md (bench/branch_g.py,
 # with bench/branch-g-notes.md after its title). Runs are resumable (FORCE=1
@@ -11,7 +12,7 @@
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mkdir -p "$HERE/out"
-for s in tipg-j tipg-jin tipg-j-seg-9 tipg-j-seg-18; do
+for s in tipg-j tipg-jin tipg-j-seg-9 tipg-j-seg-18 tipg-i; do
   KDX="${KDX-1.67 1.33 1.11 1.0 0.833 0.667 0.5}" BDX="" NO_REPORT=1 \
     bash "$HERE/fracture.sh" "$s" > "$HERE/out/branch-g-$s-k.txt" 2>&1 &
   k=$!
@@ -20,4 +21,4 @@ for s in tipg-j tipg-jin tipg-j-seg-9 tipg-j-seg-18; do
   b=$!
   wait "$k" "$b"
 done
-/usr/bin/python3 "$HERE/branch_g.py" --out "$HERE/out/fracture" --doc "$HERE/branch-g.md" tipg-j tipg-jin tipg-j-seg-9 tipg-j-seg-18
+/usr/bin/python3 "$HERE/branch_g.py" --out "$HERE/out/fracture" --doc "$HERE/branch-g.md" tipg-j tipg-jin tipg-j-seg-9 tipg-j-seg-18 tipg-i

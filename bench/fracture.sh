@@ -73,6 +73,8 @@
 #              into <case>.tips (-var tips 1): bench/branch_g.sh
 #   tipg-jin   the same with J's inertia term ('jinertia yes')
 #   tipg-j-seg-N  tipg-j with segments of N h (tipseg N)
+#   tipg-i     tipg-j with the mode ratio from the interaction integrals
+#              ('kfit interaction')
 #   tip-thesis    tip with each deck's own (thesis) coefficients
 #   tip-hoop   tip-nobranch with the direction of the largest hoop stress
 #              at 2h ('tipdir hoop', segments of h)
@@ -148,6 +150,7 @@ vars_of() {    # setting [kalthoff|branching]
       echo "-var crit tip -var branch yoffe/step -var kfit $kf -var jin $jn -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-yoffe-i) echo "-var crit tip -var branch yoffe -var kfit interaction -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tipg-j-seg-*) echo "$(vars_of tipg-j) -var tipseg ${1#tipg-j-seg-}" ;;
+    tipg-i) vars_of tipg-j | sed 's/-var kfit j /-var kfit interaction /' ;;
     tipg-j|tipg-jin) echo "-var crit tip -var branch 0 -var kfit j -var jin $([ "$1" = tipg-jin ] && echo yes || echo no) -var tips 1 -var ttips 1e-12 -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-nobranch) echo "-var crit tip -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-thesis) echo "-var crit tip -var branch 15" ;;
@@ -159,7 +162,7 @@ vars_of() {    # setting [kalthoff|branching]
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-ystep-j tip-ystep-jin tip-ystep-i tip-ystep-iin tipg-j tipg-jin tipg-j-seg-N tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-ystep-j tip-ystep-jin tip-ystep-i tip-ystep-iin tipg-j tipg-jin tipg-j-seg-N tipg-i tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }
