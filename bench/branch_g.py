@@ -88,13 +88,15 @@ def mm_of(path):
     return re.search(r"-([0-9.]+)\.tips$", path).group(1)
 
 
-def runs_code(out):
+def runs_code(outs):
+    """the code of the runs in the folders outs (summarise.py's 'code:' line), with counts"""
     codes = {}
-    for f in glob.glob(os.path.join(out, "summary-*.txt")):
-        for ln in open(f):
-            if ln.startswith("code: "):
-                codes[ln[6:].strip()] = codes.get(ln[6:].strip(), 0) + 1
-                break
+    for out in outs:
+        for f in glob.glob(os.path.join(out, "summary-*.txt")):
+            for ln in open(f):
+                if ln.startswith("code: "):
+                    codes[ln[6:].strip()] = codes.get(ln[6:].strip(), 0) + 1
+                    break
     return "; ".join(f"{k} ({n} runs)" for k, n in sorted(codes.items())) or "unknown"
 
 
@@ -193,7 +195,7 @@ def main():
     intro = os.path.join(root, "bench", "branch-g-notes.md")
     if os.path.exists(intro):
         L += [open(intro).read().rstrip(), ""]
-    codes = "; ".join(sorted(set(runs_code(os.path.join(a.out, s)) for s in a.settings) - {"unknown"}))
+    codes = runs_code([os.path.join(a.out, st) for st in a.settings])
     L += [f"Runs made with code {codes}; report written at {commit}. "
           "Settings of bench/fracture.sh: `tipg-j` is the recommended model (`criterion tip kfit j`, "
           "h = 1.33 dx, alpha 0.09, alpha_d 3.1, gamma 0, filter 0.65 0.1) with branching off; "
