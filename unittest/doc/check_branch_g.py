@@ -1,0 +1,114 @@
+"""bench/branch_g.py and bench/kcheck_kink.py on made-up runs (ctest bench.branch_g):
+
+* branch_g.py: two fake settings, one whose Kalthoff-Winkler tips stay below
+  the plate's G before 45 us (a threshold exists: "yes") and one whose tips
+  go above it ("no"); the Kalthoff-Winkler tips grow three straight segments
+  at 70, 80 and 60 deg, so the kinks between them are 10 and 20 deg (mean 15);
+* kcheck_kink.py: the maximum tangential stress kink of a kinked tip's
+  theory (tan(theta/2) -> about -theta) and a fake log's row.
+
+    check_branch_g.py --root REPO --workdir DIR
+Prints PASSED or FAILED (ctest matches PASSED).
+"""
+import argparse
+import math
+import os
+import subprocess
+import sys
+
+
+def kalthoff_tips(path, gval):
+    """a tip that rests 5 records, grows 3 segments of 10 steps, then stops"""
+    x, y, L = 0.05, 0.025, 0.05
+    rows = [(i * 1e-7, x, y, L, 0.5) for i in range(5)]
+    t = 5e-7
+    for ang in (70.0, 80.0, 60.0):
+        for _ in range(10):
+            x += 1e-4 * math.cos(math.radians(ang))
+            y += 1e-4 * math.sin(math.radians(ang))
+            L += 1e-4
+            rows.append((t, x, y, L, gval))
+            t += 1e-7
+    for _ in range(5):
+        rows.append((t, x, y, L, gval))
+        t += 1e-7
+    with open(path, "w") as f:
+        f.write("# fake\n")
+        for r in rows:
+            f.write("%.6e %.9e %.9e %.9e %.5g %.9e %.9e %.9e %.5g\n" % (r + (r[1], -r[2], r[3], r[4])))
+
+
+def plate_tips(path, gmax45):
+    """G rises linearly to gmax45 at 40 us, then stays"""
+    with open(path, "w") as f:
+        f.write("# fake\n")
+        for i in range(901):
+            t = i * 1e-7
+            g = gmax45 * min(t, 40e-6) / 40e-6
+            f.write("%.6e 0.05 0.02 0.05 %.5g 0\n" % (t, g))
+
+
+def write_run(d, name, code):
+    os.makedirs(d, exist_ok=True)
+    open(os.path.join(d, name + ".log"), "w").write("Total wall time: 0:00:01\n")
+    open(os.path.join(d, "summary-" + name + ".txt"), "w").write(f"x\ncode: {code}\n")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--root", required=True)
+    ap.add_argument("--workdir", required=True)
+    a = ap.parse_args()
+    out = os.path.join(a.workdir, "out")
+    for st, gk in (("sep", 2.0), ("nosep", 3.0)):
+        d = os.path.join(out, st)
+        for mm in ("1", "0.5"):
+            write_run(d, f"kalthoff-{mm}", "abc1234 fake")
+            kalthoff_tips(os.path.join(d, f"kalthoff-{mm}.tips"), gk)
+        write_run(d, "branching-0.5", "abc1234 fake")
+        plate_tips(os.path.join(d, "branching-0.5.tips"), 2.5)
+    doc = os.path.join(a.workdir, "branch-g.md")
+    p = subprocess.run([sys.executable, os.path.join(a.root, "bench", "branch_g.py"), "--out", out,
+                        "--doc", doc, "sep", "nosep"], capture_output=True, text=True)
+    problems = []
+    if p.returncode != 0:
+        problems.append("branch_g.py failed: " + p.stderr[-500:])
+        txt = ""
+    else:
+        txt = open(doc).read()
+    rows = {ln.split("|")[1].strip(): ln for ln in txt.splitlines() if ln.startswith("| `")}
+    want = {"`sep`": ("| yes |", "| 15.0-15.0 |"), "`nosep`": ("| no |", "| 15.0-15.0 |")}
+    for st, (verdict, kink) in want.items():
+        r = rows.get(st, "")
+        if verdict not in r or kink not in r:
+            problems.append(f"summary row of {st}: expected '{verdict}' and kinks '{kink}', got '{r}'")
+    if "abc1234 fake (6 runs)" not in txt:
+        problems.append("the runs' code and count (6 runs of abc1234) not in the report")
+    # kcheck_kink.py: the theory's kink, and a fake run's row
+    sys.path.insert(0, os.path.join(a.root, "bench"))
+    import kcheck_kink as K
+    for th, back in ((10.0, -9.9), (20.0, -18.9), (40.0, -33.3)):
+        got = math.degrees(K.mts_kink(math.tan(math.radians(th) / 2)))
+        if abs(got - back) > 0.05:
+            problems.append(f"mts_kink at {th} deg: {got:.2f}, expected {back}")
+    kd = os.path.join(a.workdir, "kink")
+    os.makedirs(kd, exist_ok=True)
+    open(os.path.join(kd, "kink-j-biaxial-20-4.5-0.001.log"), "w").write(
+        "Step Time ...\n   12000 0.001 300000 0 282000 67000 -24.0 0.0256 0.002 60\nTotal wall time: 0:00:30\n")
+    open(os.path.join(kd, "runs.txt"), "w").write("kink-j-biaxial-20-4.5-0.001.log abc1234 0123456789ab\n")
+    kdoc = os.path.join(a.workdir, "kcheck-kink.md")
+    p = subprocess.run([sys.executable, os.path.join(a.root, "bench", "kcheck_kink.py"), "--out", kd,
+                        "--doc", kdoc], capture_output=True, text=True)
+    ktxt = open(kdoc).read() if p.returncode == 0 else ""
+    row = "| j | 1 | biaxial | 20 | 4.5 | 0.30 | 0.940 | 0.955 | 0.238 | 0.176 | -24.0 | -18.9 | 1.27 |"
+    if row not in ktxt:
+        problems.append(f"kcheck_kink.py: row '{row}' not in its report ({p.stderr[-300:]})")
+    if "abc1234 (binary md5 0123456789ab): 1 runs" not in ktxt:
+        problems.append("kcheck_kink.py: the run's commit not in its report")
+    for pr in problems:
+        print("problem:", pr)
+    print("FAILED" if problems else "PASSED")
+
+
+if __name__ == "__main__":
+    main()
