@@ -10,11 +10,13 @@
     check_branch_g.py --root REPO --workdir DIR
 Prints PASSED or FAILED (ctest matches PASSED).
 """
-import argparse
 import math
 import os
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fake_runs import args, write_run  # noqa: E402  (unittest/doc/fake_runs.py)
 
 
 def kalthoff_tips(path, gval):
@@ -48,18 +50,8 @@ def plate_tips(path, gmax45):
             f.write("%.6e 0.05 0.02 0.05 %.5g 0\n" % (t, g))
 
 
-def write_run(d, name, code):
-    os.makedirs(d, exist_ok=True)
-    open(os.path.join(d, name + ".log"), "w").write("Total wall time: 0:00:01\n")
-    open(os.path.join(d, "summary-" + name + ".txt"), "w").write(f"x\ncode: {code}\n")
-
-
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--root", required=True)
-    ap.add_argument("--workdir", required=True)
-    a = ap.parse_args()
-    out = os.path.join(a.workdir, "out")
+    a, out = args()
     for st, gk in (("sep", 2.0), ("nosep", 3.0)):
         d = os.path.join(out, st)
         for mm in ("1", "0.5"):

@@ -8,7 +8,6 @@ examples/common/acceptance.py and checks the verdicts the report prints.
     check_fracture_report.py --root REPO --workdir DIR
 Prints PASSED or FAILED (ctest matches PASSED).
 """
-import argparse
 import json
 import os
 import subprocess
@@ -16,6 +15,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples"))
 from checks import verdict  # noqa: E402  (unittest/examples/checks.py)
+from fake_runs import args, write_run  # noqa: E402  (unittest/doc/fake_runs.py)
 
 
 def kalthoff(angle, speed=1700.0, diff=0.0, side=0):
@@ -32,19 +32,13 @@ def branching(t, nfin=2, side=0, two=80e-6):
 
 
 def write(d, name, j, code):
-    os.makedirs(d, exist_ok=True)
+    write_run(d, name, code,
+              "Loop time of 9.5 on 1 procs for 1500 steps with 20000 atoms\nTotal wall time: 0:00:12\n")
     json.dump(j, open(os.path.join(d, name + ".crack.json"), "w"))
-    open(os.path.join(d, name + ".log"), "w").write(
-        "Loop time of 9.5 on 1 procs for 1500 steps with 20000 atoms\nTotal wall time: 0:00:12\n")
-    open(os.path.join(d, "summary-" + name + ".txt"), "w").write(f"x\ncode: {code}\n")
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--root", required=True)
-    ap.add_argument("--workdir", required=True)
-    a = ap.parse_args()
-    out = os.path.join(a.workdir, "out")
+    a, out = args()
     # setting 'good': in every band (the branching window's edge at 44.9 us, inside 25-45)
     for mm, ang in (("1.67", 68.0), ("1.33", 71.0), ("1", 72.0), ("0.5", 67.5)):
         write(os.path.join(out, "good"), f"kalthoff-{mm}", kalthoff(ang), "abc1234 fake")
