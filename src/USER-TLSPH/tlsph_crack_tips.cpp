@@ -387,12 +387,15 @@ void TLSPHCrackTips::measure_depth()
 }
 
 // a pre-crack end is a tip when the body fills at least 3/4 of the disc of
-// radius 2h about it (an end outside the plate, or at its edge, is not)
+// radius 2h about it (an end outside the plate, or at its edge, is not) and
+// it does not lie on another pre-crack (within 1e-3 h: the joint of a kinked
+// or branched pre-crack given as several segments, or an end on a crack)
 void TLSPHCrackTips::find_tips()
 {
   ready = 1;
   list.clear();
   std::vector<std::array<double, 2>> ends;
+  std::vector<std::array<double, 4>> traces;
   for (const auto &c : pair->cracks) {
     // 3D: through-thickness cracks only, a parallelogram with one edge
     // along z; its trace in the xy plane is tracked (the crack surface is
@@ -403,6 +406,7 @@ void TLSPHCrackTips::find_tips()
     const auto t = crack_trace(pair->dim, c);
     ends.push_back({t[0], t[1]});
     ends.push_back({t[2], t[3]});
+    traces.push_back(t);
   }
   std::vector<double> vol;
   volume_near(ends, 2.0 * pair->h, vol);
@@ -410,6 +414,16 @@ void TLSPHCrackTips::find_tips()
   for (size_t e = 0; e < ends.size(); e++) {
     if (vol[e] < 0.75 * full) continue;
     const auto &E = ends[e], &O = ends[e ^ 1];
+    bool joint = false;
+    for (size_t k = 0; k < traces.size() && !joint; k++)
+      joint = k != e / 2 &&
+          TLSPH::point_segment_distance(E.data(), &traces[k][0], &traces[k][2]) < 1.0e-3 * pair->h;
+    if (joint) {
+      if (comm->me == 0)
+        utils::logmesg(lmp, "pair tlsph/damage: pre-crack end ({:.6g}, {:.6g}) lies on another "
+                            "pre-crack: not a tip\n", E[0], E[1]);
+      continue;
+    }
     CrackTip tp;
     tp.path = {O, E};
     const double L = std::hypot(E[0] - O[0], E[1] - O[1]);
