@@ -33,7 +33,7 @@ def mts_kink(r):
 
 
 def last_thermo(path):
-    """the last thermo row of the run: step time K_I K_II (tip 1), K_I K_II kink x y (tip 4), dr"""
+    """the last thermo row of the run: step time K_I K_II (the straight tip), K_I K_II kink x y (the kinked tip), dr"""
     rows = []
     for ln in open(path):
         w = ln.split()
