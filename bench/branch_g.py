@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Can a threshold on G separate the two fracture benchmarks? (bench/branch_g.sh)
 
-Reads the runs of bench/fracture.sh setting tipg-j (the recommended model,
-`criterion tip kfit j`, with branching off and the tips' G/G_c written at
-every step: the decks' -var tips 1 -var ttips 1e-12) and writes
-bench/branch-g.md: per resolution, the largest G/G_c a Kalthoff-Winkler 2D
+Reads the runs of the bench/fracture.sh settings given (tipg-j, tipg-jin,
+tipg-j-seg-N, tipg-i: branching off, the tips' G/G_c written at every step by
+the decks' -var tips 1 -var ttips 1e-12) and writes bench/branch-g.md: a
+summary over the settings, then per setting and resolution, the largest G/G_c a Kalthoff-Winkler 2D
 notch tip reaches while it grows, and the largest the glass plate's single tip
 reaches before 25 us and before 45 us (the issues' branching window).
 
@@ -26,6 +26,7 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                                 "examples", "common"))
 import acceptance as A  # noqa: E402  (the window and the Rayleigh speeds, one place)
+import run_info  # noqa: E402  (the runs' code)
 
 BR_LO, BR_HI = A.BR_WINDOW.value    # s
 
@@ -86,18 +87,6 @@ def finished(tips):
 
 def mm_of(path):
     return re.search(r"-([0-9.]+)\.tips$", path).group(1)
-
-
-def runs_code(outs):
-    """the code of the runs in the folders outs (summarise.py's 'code:' line), with counts"""
-    codes = {}
-    for out in outs:
-        for f in glob.glob(os.path.join(out, "summary-*.txt")):
-            for ln in open(f):
-                if ln.startswith("code: "):
-                    codes[ln[6:].strip()] = codes.get(ln[6:].strip(), 0) + 1
-                    break
-    return "; ".join(f"{k} ({n} runs)" for k, n in sorted(codes.items())) or "unknown"
 
 
 def measure(out):
@@ -195,7 +184,7 @@ def main():
     intro = os.path.join(root, "bench", "branch-g-notes.md")
     if os.path.exists(intro):
         L += [open(intro).read().rstrip(), ""]
-    codes = runs_code([os.path.join(a.out, st) for st in a.settings])
+    codes = run_info.runs_code([os.path.join(a.out, st) for st in a.settings])
     L += [f"Runs made with code {codes}; report written at {commit}. "
           "Settings of bench/fracture.sh: `tipg-j` is the recommended model (`criterion tip kfit j`, "
           "h = 1.33 dx, alpha 0.09, alpha_d 3.1, gamma 0, filter 0.65 0.1) with branching off; "

@@ -27,6 +27,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                                 "examples", "common"))
 import acceptance as A  # noqa: E402  (the acceptance bands, one place)
+import run_info  # noqa: E402  (the runs' code)
 
 RAYLEIGH_KW, RAYLEIGH_GLASS = A.RAYLEIGH_STEEL.value, A.RAYLEIGH_GLASS.value    # m/s
 BAND_LO, BAND_HI = A.KW_ANGLE_BAND.value           # deg, the Kalthoff-Winkler angle band
@@ -284,16 +285,7 @@ def main():
     # the plots: the settings run at several resolutions (the scans are one dx each)
     plot({s: v for s, v in data.items() if not s.startswith("scan-")}, png)
     # the code the runs were made with (summarise.py's 'code:' line of each run)
-    codes = {}
-    for st in a.settings:
-        d = os.path.join(a.out, st)
-        for f in (os.listdir(d) if os.path.isdir(d) else []):
-            if f.startswith("summary-") and f.endswith(".txt"):
-                for ln in open(os.path.join(d, f)):
-                    if ln.startswith("code: "):
-                        codes[ln[6:].strip()] = codes.get(ln[6:].strip(), 0) + 1
-                        break
-    runs_code = "; ".join(f"{k} ({n} runs)" for k, n in sorted(codes.items())) or "unknown"
+    runs_code = run_info.runs_code([os.path.join(a.out, st) for st in a.settings])
     lines = [f"# {a.title}", ""]
     if a.intro and os.path.exists(a.intro):
         lines += [open(a.intro).read().rstrip(), ""]

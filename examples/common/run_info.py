@@ -90,5 +90,20 @@ def git_rev():
         return 'unknown'
 
 
+def runs_code(folders):
+    """The code the runs in these folders were made with: the 'code:' line
+    (git_rev, through the summary scripts) of each summary-*.txt, counted,
+    as 'CODE (N runs); ...'; 'unknown' when there is none."""
+    codes = {}
+    for d in folders:
+        for f in sorted(os.listdir(d)) if os.path.isdir(d) else []:
+            if f.startswith('summary-') and f.endswith('.txt'):
+                for ln in open(os.path.join(d, f)):
+                    if ln.startswith('code: '):
+                        codes[ln[6:].strip()] = codes.get(ln[6:].strip(), 0) + 1
+                        break
+    return '; '.join(f'{k} ({n} runs)' for k, n in sorted(codes.items())) or 'unknown'
+
+
 def us(v):
     return 'n/a' if v is None else f'{v * 1e6:.1f} us'
