@@ -60,6 +60,9 @@
 #   tip-yoffe-jin  tip-yoffe-j with the inertia term of the dynamic
 #              J-integral ('jinertia yes'); bench/kfit_inertia.sh
 #   tip-yoffe-iin  tip-yoffe-i with it
+#   tip-yoffe-is  tip-yoffe-i with the kink that leaves each segment's end
+#              in mode I by the T-stress ('tipdir segment'); tip-yoffe-iins
+#              the same with 'jinertia yes'
 #   tip-ystep-j, -jin, -i, -iin  the same four with 'branch yoffe/step':
 #              the branching condition tested at every step, not only
 #              where a segment starts
@@ -75,6 +78,7 @@
 #   tipg-j-seg-N  tipg-j with segments of N h (tipseg N)
 #   tipg-i     tipg-j with the mode ratio from the interaction integrals
 #              ('kfit interaction')
+#   tipg-is    tipg-i with tipdir segment (the kink by the T-stress)
 #   tip-thesis    tip with each deck's own (thesis) coefficients
 #   tip-hoop   tip-nobranch with the direction of the largest hoop stress
 #              at 2h ('tipdir hoop', segments of h)
@@ -148,6 +152,9 @@ vars_of() {    # setting [kalthoff|branching]
       case "${1#tip-ystep-}" in j) kf=j ;; jin) kf=j; jn=yes ;; i) kf=interaction ;; iin) kf=interaction; jn=yes ;;
         *) echo "bench/fracture.sh: unknown setting '$1' (tip-ystep-j, -jin, -i, -iin)" >&2; return 1 ;; esac
       echo "-var crit tip -var branch yoffe/step -var kfit $kf -var jin $jn -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    tip-yoffe-is) echo "$(vars_of tip-yoffe-i) -var tipdir segment" ;;
+    tip-yoffe-iins) echo "$(vars_of tip-yoffe-iin) -var tipdir segment" ;;
+    tipg-is) echo "$(vars_of tipg-i) -var tipdir segment" ;;
     tip-yoffe-i) echo "-var crit tip -var branch yoffe -var kfit interaction -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tipg-j-seg-*) echo "$(vars_of tipg-j) -var tipseg ${1#tipg-j-seg-}" ;;
     tipg-i) vars_of tipg-j | sed 's/-var kfit j /-var kfit interaction /' ;;
@@ -162,7 +169,7 @@ vars_of() {    # setting [kalthoff|branching]
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-ystep-j tip-ystep-jin tip-ystep-i tip-ystep-iin tipg-j tipg-jin tipg-j-seg-N tipg-i tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-yoffe-is tip-yoffe-iins tip-ystep-j tip-ystep-jin tip-ystep-i tip-ystep-iin tipg-j tipg-jin tipg-j-seg-N tipg-i tipg-is tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }

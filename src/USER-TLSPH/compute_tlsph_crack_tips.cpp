@@ -72,6 +72,7 @@ void ComputeTLSPHCrackTips::fill()
     r[7] = tp.kink * 180.0 / M_PI;
     r[8] = tp.alive ? tp.speed : 0.0;
     r[9] = len;
+    r[10] = tp.T;
     live += tp.alive ? 1 : 0;
   }
   values[0] = n;

@@ -36,7 +36,7 @@ class ComputeTLSPHCrackTips : public Compute {
   void compute_array() override;
   double memory_usage() override;
 
-  static constexpr int NCOL = 10;
+  static constexpr int NCOL = 11;
 
  private:
   double values[2];

@@ -128,6 +128,27 @@ inline double mts_equivalent_K(double KI, double KII, double theta)
   return c2 * (KI * c2 * c2 - 1.5 * KII * std::sin(theta));
 }
 
+/* The kink of a straight segment of length s that leaves its end in mode I
+   (tipdir segment). To first order in the kink theta, a kinked crack's
+   tip a distance s along the kink has (Cotterell & Rice 1980)
+     k_II(s) = K_II + theta [K_I / 2 - T sqrt(8 s / pi)],
+   T the stress along the crack's line (the faces' tractions that the T
+   stress puts on the kinked faces, -T theta, through the point-load weight
+   sqrt(2 / (pi r)) of a semi-infinite crack). The maximum-tangential-stress
+   kink (mts_kink_angle) zeroes the first two terms; a segment that keeps
+   that direction for s ends with k_II = -theta T sqrt(8 s / pi), which
+   under T < 0 has the sign opposite to K_II: the next segment kinks back
+   past the path, and the path zigzags. This angle zeroes k_II(s): the
+   maximum-tangential-stress kink of K_II against K_I - 2 T sqrt(8 s / pi).
+   Under T > 0 the correction would enlarge the kink without bound as
+   T sqrt(8 s / pi) nears K_I / 2 (the path is unstable there, and the
+   first-order form fails first): the kink is then the local one. */
+inline double segment_kink_angle(double KI, double KII, double T, double s)
+{
+  const double KIe = T < 0.0 ? KI - 2.0 * T * std::sqrt(8.0 * s / M_PI) : KI;
+  return mts_kink_angle(KIe, KII);
+}
+
 /* The energy release rate by the domain form of the dynamic J-integral
    (Moran & Shih 1987; Shih, Moran & Nakamura 1986), written in the
    reference configuration (total Lagrangian: P the first Piola-Kirchhoff
@@ -267,15 +288,46 @@ inline void williams_aux(int mode, double r, double th, double mu, double kappa,
   }
 }
 
-/* one particle's integrands of I for modes I and II (out[0], out[1]): F, P
-   3 x 3 row-major (reference frame), X its reference position less the
-   tip's, e the crack's unit direction, gq = grad q (3 components each); mu,
-   kappa as williams_aux. A particle at the tip (r = 0) adds nothing. */
+/* The T-stress by the same integral (Kfouri 1986): the auxiliary field of
+   a point force f = 1 per unit depth at the tip, pointing along the crack
+   (+x1), in the body with the traction-free crack, Flamant's radial field
+   sigma_rr = -cos(theta) / (pi r), sigma_tt = sigma_rt = 0, with the
+   displacement
+     u1 = -(kappa + 1) / (8 pi mu) ln r - sin^2(theta) / (4 pi mu)
+     u2 = -(kappa - 1) / (8 pi mu) theta + sin(theta) cos(theta) / (4 pi mu).
+   Its interaction integral with the actual field is T / E' (T the stress
+   along the crack's line that the crack does not carry, the second term of
+   Williams's series; the K fields and the higher terms give zero), as
+   ctest physics.CrackTip.InteractionIntegralOfTheWilliamsField checks.
+   point_force_aux: its displacement gradient Ha and stress Pa at (r, theta)
+   (theta from e), mu and kappa as williams_aux. */
+inline void point_force_aux(double r, double th, double mu, double kappa, double Ha[2][2],
+                            double Pa[2][2])
+{
+  const double c = std::cos(th), s = std::sin(th), c2t = c * c - s * s;
+  const double c1 = (kappa + 1.0) / (8.0 * M_PI * mu), cs = 1.0 / (4.0 * M_PI * mu),
+               c3 = (kappa - 1.0) / (8.0 * M_PI * mu);
+  // d/dx1: dr = cos, dtheta = -sin / r; d/dx2: dr = sin, dtheta = cos / r
+  Ha[0][0] = (-c1 * c + 2.0 * cs * s * s * c) / r;
+  Ha[0][1] = (-c1 * s - 2.0 * cs * s * c * c) / r;
+  Ha[1][0] = (c3 * s - cs * c2t * s) / r;
+  Ha[1][1] = (-c3 * c + cs * c2t * c) / r;
+  const double srr = -c / (M_PI * r);
+  Pa[0][0] = srr * c * c;
+  Pa[1][1] = srr * s * s;
+  Pa[0][1] = Pa[1][0] = srr * s * c;
+}
+
+/* one particle's integrands of I for modes I and II (out[0], out[1]) and of
+   the point force's (out[2], with nout = 3): F, P 3 x 3 row-major
+   (reference frame), X its reference position less the tip's, e the crack's
+   unit direction, gq = grad q (3 components each); mu, kappa as
+   williams_aux. A particle at the tip (r = 0) adds nothing. */
 inline void interaction_integrand(const double *F, const double *P, const double *X,
                                   const double *e, const double *gq, double mu, double kappa,
-                                  double *out)
+                                  double *out, int nout = 2)
 {
-  out[0] = out[1] = 0.0;
+  for (int m = 0; m < nout; m++) out[m] = 0.0;
   // the crack's frame: rows e and n = e turned by +90 deg
   const double R[2][2] = {{e[0], e[1]}, {-e[1], e[0]}};
   const double x1 = R[0][0] * X[0] + R[0][1] * X[1], x2 = R[1][0] * X[0] + R[1][1] * X[1];
@@ -296,9 +348,10 @@ inline void interaction_integrand(const double *F, const double *P, const double
       S[i][j] = p;
     }
   }
-  for (int mode = 0; mode < 2; mode++) {
+  for (int mode = 0; mode < nout; mode++) {
     double Ha[2][2], Pa[2][2];
-    williams_aux(mode, r, th, mu, kappa, Ha, Pa);
+    if (mode < 2) williams_aux(mode, r, th, mu, kappa, Ha, Pa);
+    else point_force_aux(r, th, mu, kappa, Ha, Pa);
     double w12 = 0.0, v = 0.0;
     for (int i = 0; i < 2; i++)
       for (int j = 0; j < 2; j++) {

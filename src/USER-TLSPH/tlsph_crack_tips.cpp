@@ -44,6 +44,7 @@ TLSPHCrackTips::TLSPHCrackTips(LAMMPS *lmp, PairTLSPHDamage *p) : Pointers(lmp),
 void TLSPHCrackTips::defaults()
 {
   tipdir_hoop = 0;
+  tipdir_seg = 0;
   kfit = 0;
   jr1 = 2.0;
   jr2 = 4.0;
@@ -57,17 +58,18 @@ void TLSPHCrackTips::defaults()
   p_split = 1.0;
 }
 
-/* the tip keywords of pair_style tlsph/damage: tipdir faces|hoop,
+/* the tip keywords of pair_style tlsph/damage: tipdir faces|hoop|segment,
    kfit tip|offset|j|interaction, jring r1 r2, tipseg L, branch yoffe|A */
 int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
 {
   const std::string key = arg[iarg];
   if (key == "tipdir") {
     if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: tipdir needs a value");
-    if (strcmp(arg[iarg + 1], "faces") == 0) tipdir_hoop = 0;
-    else if (strcmp(arg[iarg + 1], "hoop") == 0) tipdir_hoop = 1;
+    if (strcmp(arg[iarg + 1], "faces") == 0) tipdir_hoop = 0, tipdir_seg = 0;
+    else if (strcmp(arg[iarg + 1], "hoop") == 0) tipdir_hoop = 1, tipdir_seg = 0;
+    else if (strcmp(arg[iarg + 1], "segment") == 0) tipdir_hoop = 0, tipdir_seg = 1;
     else
-      error->all(FLERR, "pair_style tlsph/damage: tipdir must be 'faces' or 'hoop', got '{}'",
+      error->all(FLERR, "pair_style tlsph/damage: tipdir must be 'faces', 'hoop' or 'segment', got '{}'",
                  arg[iarg + 1]);
     return 2;
   }
@@ -156,15 +158,16 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
 
 /* ----------------------------------------------------------------------
    restart: the settings, then every tip with its path (identical on all
-   ranks). tipdir and kfit share one value, tipdir + 2 kfit, 0 to 7 (files
-   written before kfit read as kfit tip); tipmode + 2 marks the layout with the J ring after the six
+   ranks). tipdir and kfit share one value, tipdir + 2 kfit + 8 (tipdir
+   segment), 0 to 15 (files written before kfit read as kfit tip, before
+   tipdir segment as faces or hoop); tipmode + 2 marks the layout with the J ring after the six
    (files written before it have tipmode 0 or 1 there and the default ring), + 4 the ring and the
    tipparam values, + 8 those and jinertia
 ------------------------------------------------------------------------- */
 
 void TLSPHCrackTips::write_restart(FILE *fp, int tipmode)
 {
-  double w[6] = {(double) tipmode + 8.0, (double) (tipdir_hoop + 2 * kfit), seg, branch,
+  double w[6] = {(double) tipmode + 8.0, (double) (tipdir_hoop + 2 * kfit + 8 * tipdir_seg), seg, branch,
                  (double) ready, (double) list.size()};
   fwrite(w, sizeof(double), 6, fp);
   const double jr[8] = {jr1, jr2, p_sample, p_disc, p_hoopr, (double) p_window, p_split, (double) jinertia};
@@ -189,7 +192,7 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   if (extra == 8) w[0] -= 8.0;
   else if (extra == 7) w[0] -= 4.0;
   else if (extra == 2) w[0] -= 2.0;
-  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 7.0 && w[1] == std::floor(w[1])) &&
+  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 15.0 && w[1] == std::floor(w[1])) &&
         w[2] >= 0.0 && (w[3] == -1.0 || w[3] == -2.0 || (w[3] >= 0.0 && w[3] < 2.0)) &&
         (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 &&
         w[5] == std::floor(w[5]) && w[5] < 1.0e7))
@@ -198,7 +201,8 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   const int tipmode = static_cast<int>(w[0]);
   defaults();    // what an older layout does not carry
   tipdir_hoop = static_cast<int>(w[1]) % 2;
-  kfit = static_cast<int>(w[1]) / 2;
+  kfit = (static_cast<int>(w[1]) / 2) % 4;
+  tipdir_seg = static_cast<int>(w[1]) / 8;
   seg = w[2];
   branch = w[3];
   ready = static_cast<int>(w[4]);
@@ -526,8 +530,9 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
 {
   const int nt = live.size();
   J.assign(nt, 0.0);
-  // kfit interaction: per tip J, then the interaction integrals of modes I and II
-  const int nw = Imix ? 3 : 1;
+  // kfit interaction: per tip J, then the interaction integrals of modes I
+  // and II, and with tipdir segment the point force's (the T-stress)
+  const int ni = Imix ? (tipdir_seg ? 3 : 2) : 0, nw = 1 + ni;
   double **v = atom->v;
   // the stored P is the law's unless the conservative hourglass term is in it
   const bool law_P = pair->hg_form == 2 && pair->gamma != 0.0;
@@ -568,7 +573,7 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
     const double *Fs = pair->F[0], *Ps = pair->P[0], *vs = v[0];
     const double *psi = pair->psi;
     const double *rw = st.w.data() + st.idx.size();
-    double Ja = 0.0, I1 = 0.0, I2 = 0.0;
+    double Ja = 0.0, I1[3] = {0.0, 0.0, 0.0};
     const size_t nr = st.slot.size();
     for (size_t m = 0; m < nr; m++, rw += 6) {
       const int i = st.slot[m];
@@ -593,10 +598,9 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
       Ja += rw[4] * TLSPH::j_integrand(F, P, W, rw[5], vr, e, gq);
       if (Imix) {
         const double X[3] = {rw[2], rw[3], 0.0};
-        double o[2];
-        TLSPH::interaction_integrand(F, P, X, e, gq, mu, kappa, o);
-        I1 += rw[4] * o[0];
-        I2 += rw[4] * o[1];
+        double o[3];
+        TLSPH::interaction_integrand(F, P, X, e, gq, mu, kappa, o, ni);
+        for (int k = 0; k < ni; k++) I1[k] += rw[4] * o[k];
       }
     }
     if (jinertia) {
@@ -620,7 +624,7 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
       }
     }
     mine[nw * a] = Ja;
-    if (Imix) mine[nw * a + 1] = I1, mine[nw * a + 2] = I2;
+    for (int k = 0; k < ni; k++) mine[nw * a + 1 + k] = I1[k];
   }
   MPI_Allreduce(mine.data(), all.data(), nw * nt, MPI_DOUBLE, MPI_SUM, world);
   for (int a = 0; a < nt; a++) {
@@ -633,9 +637,9 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
     J[a] = Ja / depth;
   }
   if (Imix) {
-    Imix->assign(2 * nt, 0.0);
+    Imix->assign(3 * nt, 0.0);
     for (int a = 0; a < nt; a++)
-      for (int m = 0; m < 2; m++) (*Imix)[2 * a + m] = all[nw * a + 1 + m] / depth;
+      for (int m = 0; m < ni; m++) (*Imix)[3 * a + m] = all[nw * a + 1 + m] / depth;
   }
 }
 
@@ -933,7 +937,7 @@ void TLSPHCrackTips::grow()
   // crack's energy release rate, from which the kink rule (Erdogan and Sih)
   // takes the kinked tip's (J along the new segment would add the unknown
   // term W (m . e) on the parent's faces, which are not parallel to it)
-  std::vector<double> Jt(nt, 0.0), It(2 * nt, 0.0);
+  std::vector<double> Jt(nt, 0.0), It(3 * nt, 0.0);
   if (kfit >= 2) {
     std::vector<int> live;
     std::vector<double> dir;
@@ -949,7 +953,7 @@ void TLSPHCrackTips::grow()
     for (size_t k = 0; k < live.size(); k++) {
       Jt[live[k]] = Jl[k];
       if (kfit == 3)
-        for (int m = 0; m < 2; m++) It[2 * live[k] + m] = Il[2 * k + m];
+        for (int m = 0; m < 3; m++) It[3 * live[k] + m] = Il[3 * k + m];
     }
   }
 
@@ -988,7 +992,7 @@ void TLSPHCrackTips::grow()
         : kfit == 2
         ? TLSPH::k_from_j(Jt[a], TLSPH::displacement_correlation(cnt, rr, jn, jt, Eprime), Eprime)
         : kfit == 3
-        ? TLSPH::k_from_j(Jt[a], TLSPH::CrackK{It[2 * a] > 0.0 ? It[2 * a] : 0.0, It[2 * a + 1]}, Eprime)
+        ? TLSPH::k_from_j(Jt[a], TLSPH::CrackK{It[3 * a] > 0.0 ? It[3 * a] : 0.0, It[3 * a + 1]}, Eprime)
         : TLSPH::displacement_correlation(cnt, rr, jn, jt, Eprime);
     const double KI = K.KI, KII = K.KII;
     const double th = TLSPH::mts_kink_angle(KI, KII);
@@ -997,13 +1001,16 @@ void TLSPHCrackTips::grow()
     Kt[2 * a] = KI;
     Kt[2 * a + 1] = KII;
     tht[a] = th;
-    tp.KI = KI, tp.KII = KII, tp.G = Gt[a], tp.kink = th;
+    // tipdir segment: the T-stress (I of the point force = T / E')
+    const double Ts = (kfit == 3 && tipdir_seg) ? Eprime * It[3 * a + 2] : 0.0;
+    tp.KI = KI, tp.KII = KII, tp.G = Gt[a], tp.kink = th, tp.T = Ts;
     tp.speed = 0.0;
     if (Gt[a] < Gc || tp.seg != 0.0) continue;
     // a new segment: the kink angle turns the direction of the faces that
     // K was measured on (not the last segment's, which may already have turned)
     const double fl = std::hypot(fr[0], fr[1]);
-    const double c = cos(th), sn = sin(th), f0 = fr[0] / fl, f1 = fr[1] / fl;
+    const double thd = tipdir_seg && tp.growing ? TLSPH::segment_kink_angle(KI, KII, Ts, seglen) : th;
+    const double c = cos(thd), sn = sin(thd), f0 = fr[0] / fl, f1 = fr[1] / fl;
     nd[2 * a] = c * f0 - sn * f1;
     nd[2 * a + 1] = sn * f0 + c * f1;
     want.push_back(a);
@@ -1186,9 +1193,9 @@ void TLSPHCrackTips::grow()
       tp.t[1] = t1;
       tp.path.push_back({P[0], P[1]});
       if (comm->me == 0 && getenv("TLSPH_TIP_TRACE"))
-        utils::logmesg(lmp, "tip-trace {} {} {:.6g} {:.6g} {:.4g} {:.4g} {:.4g} {:.3f} {:.2f}\n",
+        utils::logmesg(lmp, "tip-trace {} {} {:.6g} {:.6g} {:.4g} {:.4g} {:.4g} {:.3f} {:.2f} {:.4g}\n",
                        update->ntimestep, a, P[0], P[1], Kt[2 * a], Kt[2 * a + 1], G / Gc,
-                       v / cR, atan2(t1, t0) * 180.0 / M_PI);
+                       v / cR, atan2(t1, t0) * 180.0 / M_PI, tp.T);
     }
     double da = v * dt;
     double Pn[2] = {P[0] + da * tp.t[0], P[1] + da * tp.t[1]};

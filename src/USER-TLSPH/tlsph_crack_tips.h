@@ -39,6 +39,7 @@ struct CrackTip {
   double KI = 0.0, KII = 0.0;    // stress intensity factors
   double G = 0.0;                // energy release rate of the kink direction
   double kink = 0.0;             // kink angle of the maximum tangential stress [rad]
+  double T = 0.0;                // T-stress (tipdir segment; 0 otherwise)
   double speed = 0.0;            // advance speed (0: not growing)
   // jinertia: the force part of J's inertia term, per reference direction
   // x, y (tlsph_crack.h, j_inertia_force), summed over the J domain at the
@@ -92,6 +93,8 @@ class TLSPHCrackTips : protected Pointers {
 
   // settings (the pair_style keywords)
   int tipdir_hoop;  // tipdir: 0 kink angle from K_I, K_II, 1 largest hoop stress
+  int tipdir_seg;   // tipdir segment: 1 the kink from K_I, K_II and the T-stress that leaves
+                    // the segment's end in mode I (Cotterell & Rice; kfit interaction)
   int kfit;         // K: 0 fit anchored at the path's end, 1 with the tip's offset fitted,
                     // 2 size from the domain J-integral (ratio: fit 0), 3 size from J,
                     // ratio from the interaction integrals over the same ring

@@ -213,7 +213,8 @@ namespace {
    of the ring weight q, 1 inside r1, 0 beyond r2), in the global frame. */
 const double WE = 32e9, WNU = 0.2, WMU = WE / (2 * (1 + WNU)), WKAPPA = 3 - 4 * WNU;
 template <class Visit>
-void williams_lattice(double KI, double KII, double beta, double r1, double r2, double d, Visit visit)
+void williams_lattice(double KI, double KII, double beta, double r1, double r2, double d, Visit visit,
+                      double T = 0.0)
 {
   const double mu = WMU, lam = 2 * mu * WNU / (1 - 2 * WNU), kappa = WKAPPA;
   const double cb = std::cos(beta), sb = std::sin(beta);
@@ -236,6 +237,9 @@ void williams_lattice(double KI, double KII, double beta, double r1, double r2, 
         williams_u(KI, KII, mu, kappa, std::hypot(xm, ym), std::atan2(ym, xm), um);
         for (int i = 0; i < 2; i++) Hl[i][c] = (up[i] - um[i]) / (2 * s);
       }
+      // the T term, sigma_11 = T (plane strain)
+      Hl[0][0] += (1 - WNU * WNU) * T / WE;
+      Hl[1][1] -= WNU * (1 + WNU) * T / WE;
       // rotated into the global frame: H = R Hl R^T
       const double R[2][2] = {{cb, -sb}, {sb, cb}};
       double H[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -272,19 +276,22 @@ double williams_j(double KI, double KII, double beta, double r1, double r2, doub
   return J;
 }
 
-// K_I and K_II of that field by the interaction integral (lattice sum): E' I / 2
-TLSPH::CrackK williams_interaction(double KI, double KII, double beta, double r1, double r2, double d)
+// K_I and K_II of that field by the interaction integral (lattice sum): E' I / 2;
+// with Tout, its T-stress too, E' I of the point force
+TLSPH::CrackK williams_interaction(double KI, double KII, double beta, double r1, double r2, double d,
+                                   double T = 0.0, double *Tout = nullptr)
 {
-  double I[2] = {0.0, 0.0};
-  williams_lattice(KI, KII, beta, r1, r2, d,
-                   [&](const double *F, const double *sig, double, const double *X, const double *e,
-                       const double *gq) {
-                     double o[2];
-                     TLSPH::interaction_integrand(F, sig, X, e, gq, WMU, WKAPPA, o);
-                     I[0] += d * d * o[0];
-                     I[1] += d * d * o[1];
-                   });
+  double I[3] = {0.0, 0.0, 0.0};
+  williams_lattice(
+      KI, KII, beta, r1, r2, d,
+      [&](const double *F, const double *sig, double, const double *X, const double *e, const double *gq) {
+        double o[3];
+        TLSPH::interaction_integrand(F, sig, X, e, gq, WMU, WKAPPA, o, Tout ? 3 : 2);
+        for (int m = 0; m < (Tout ? 3 : 2); m++) I[m] += d * d * o[m];
+      },
+      T);
   const double Eprime = WE / (1 - WNU * WNU);
+  if (Tout) *Tout = Eprime * I[2];
   return TLSPH::CrackK{0.5 * Eprime * I[0], 0.5 * Eprime * I[1]};
 }
 
@@ -434,6 +441,53 @@ TEST(CrackTip, InteractionAuxiliaryFieldsAreWilliams)
     }
 }
 
+// the point force's auxiliary field (the T-stress's): its displacement
+// gradient is that of its displacement (central differences), its stress
+// Hooke's law of it, and the crack's faces are free of traction
+TEST(CrackTip, PointForceAuxiliaryField)
+{
+  const double mu = 13.3e9;
+  for (double nu : {0.2, 0.35})
+    for (int pstress = 0; pstress < 2; pstress++) {
+      const double kappa = pstress ? (3 - nu) / (1 + nu) : 3 - 4 * nu;
+      const double lam = pstress ? 2 * mu * nu / (1 - nu) : 2 * mu * nu / (1 - 2 * nu);
+      auto u = [&](double x, double y, double *o) {
+        const double r = std::hypot(x, y), th = std::atan2(y, x), sn = std::sin(th), c = std::cos(th);
+        o[0] = -(kappa + 1) / (8 * PI * mu) * std::log(r) - sn * sn / (4 * PI * mu);
+        o[1] = -(kappa - 1) / (8 * PI * mu) * th + sn * c / (4 * PI * mu);
+      };
+      for (double th : {-3.0, -2.1, -0.9, 0.0, 0.4, 1.7, 2.9})
+        for (double r : {1e-4, 3e-3}) {
+          double Ha[2][2], Pa[2][2];
+          TLSPH::point_force_aux(r, th, mu, kappa, Ha, Pa);
+          const double x = r * std::cos(th), y = r * std::sin(th), s = 1e-6 * r;
+          const double scale = 1.0 / (mu * r);
+          for (int j = 0; j < 2; j++) {
+            double up[2], um[2];
+            u(x + (j == 0 ? s : 0), y + (j == 1 ? s : 0), up);
+            u(x - (j == 0 ? s : 0), y - (j == 1 ? s : 0), um);
+            for (int i = 0; i < 2; i++)
+              EXPECT_NEAR(Ha[i][j], (up[i] - um[i]) / (2 * s), 1e-7 * scale)
+                  << "theta " << th << " i " << i << " j " << j;
+          }
+          const double tr = Ha[0][0] + Ha[1][1];
+          for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) {
+              const double sig = mu * (Ha[i][j] + Ha[j][i]) + (i == j ? lam * tr : 0.0);
+              EXPECT_NEAR(Pa[i][j], sig, 1e-9 * mu * scale) << "nu " << nu << " plane stress " << pstress
+                                                            << " theta " << th;
+            }
+        }
+      // on the faces (theta = +-pi) the traction sigma . (0, 1) is zero
+      for (double th : {PI, -PI}) {
+        double Ha[2][2], Pa[2][2];
+        TLSPH::point_force_aux(2e-3, th, mu, kappa, Ha, Pa);
+        EXPECT_NEAR(Pa[0][1], 0.0, 1e-12 / 2e-3);
+        EXPECT_NEAR(Pa[1][1], 0.0, 1e-12 / 2e-3);
+      }
+    }
+}
+
 // the interaction integral of the Williams field gives K_I and K_II, signs
 // included, whatever the crack's direction and the ring; the lattice sum
 // converges to them as the lattice is refined
@@ -457,6 +511,66 @@ TEST(CrackTip, InteractionIntegralOfTheWilliamsField)
         EXPECT_NEAR(k.KI / Kn, KI / Kn, 0.005);
         EXPECT_NEAR(k.KII / Kn, KII / Kn, 0.005);
       }
+}
+
+// tipdir segment's kink: with T = 0 or T > 0 the maximum-tangential-stress
+// kink; with T < 0 smaller, and the first-order k_II at the segment's end
+// (Cotterell & Rice, K_II + theta (K_I / 2 - T sqrt(8 s / pi))) is zero up
+// to the kink rule's third order, where the local kink leaves it at
+// -theta T sqrt(8 s / pi), of the sign opposite to K_II
+TEST(CrackTip, SegmentKinkLeavesTheSegmentsEndInModeI)
+{
+  const double KI = 3.0e5, s = 6.0e-3;
+  for (double KII : {4.0e4, -2.5e4, 1.0e3}) {
+    const double loc = TLSPH::mts_kink_angle(KI, KII);
+    EXPECT_EQ(TLSPH::segment_kink_angle(KI, KII, 0.0, s), loc);
+    EXPECT_EQ(TLSPH::segment_kink_angle(KI, KII, 2.0e6, s), loc);
+    for (double T : {-0.3e6, -1.0e6, -3.0e6}) {
+      const double th = TLSPH::segment_kink_angle(KI, KII, T, s);
+      const double b = KI / 2 - T * std::sqrt(8 * s / PI);
+      const double kend = KII + th * b, kloc = KII + loc * b;
+      EXPECT_LT(std::fabs(th), std::fabs(loc)) << "K_II " << KII << " T " << T;
+      EXPECT_GT(th * loc, 0.0);
+      // (the kink is mts_kink_angle's, -2 K_II / K_I + O((K_II / K_I)^3))
+      EXPECT_LT(std::fabs(kend), 2.0 * (KII / KI) * (KII / KI) * std::fabs(KII)) << "K_II " << KII << " T " << T;
+      EXPECT_LT(kloc * KII, 0.0);    // the local kink overshoots
+    }
+  }
+  EXPECT_EQ(TLSPH::segment_kink_angle(KI, 0.0, -1.0e6, s), 0.0);
+}
+
+// with the Williams series's second term, a stress T along the crack's line:
+// the point force's interaction integral gives T, sign included, whatever
+// K_I, K_II, the crack's direction and the ring (the K fields give it
+// nothing), its lattice sum converging as the lattice is refined; and T
+// leaves K_I and K_II as they were. T is compared on the scale of the
+// singular stress at the ring's outer radius, K / sqrt(2 pi r2): in the
+// kink rule T enters beside K_I as T sqrt(s) (s a segment, a few r2)
+TEST(CrackTip, InteractionIntegralGivesTheTStress)
+{
+  const double r2 = 4e-3;
+  for (double beta : {0.0, 0.7, -2.2})
+    for (double T : {-2.0e6, 0.0, 1.5e6})
+      for (double KII : {0.0, 0.6e6})
+        for (double KI : {1.0e6, 0.0}) {
+          if (KI == 0.0 && KII == 0.0) continue;
+          const double Kn = std::hypot(KI, KII), Ts = Kn / std::sqrt(2 * PI * r2);
+          double err_prev = 1.0;
+          for (double d : {r2 / 40, r2 / 160}) {
+            double Tm = 0.0;
+            const TLSPH::CrackK k = williams_interaction(KI, KII, beta, 0.4 * r2, r2, d, T, &Tm);
+            const double err = std::fabs(Tm - T) / Ts;
+            EXPECT_LT(err, d < r2 / 100 ? 0.005 : 0.05) << "beta " << beta << " T " << T << " KI " << KI
+                                                        << " KII " << KII << ": " << Tm;
+            EXPECT_LT(err, err_prev);
+            err_prev = err;
+            const double kerr = std::max(std::fabs(k.KI - KI), std::fabs(k.KII - KII)) / Kn;
+            EXPECT_LT(kerr, d < r2 / 100 ? 0.005 : 0.05) << "beta " << beta << " T " << T;
+          }
+          double Tm = 0.0;
+          williams_interaction(KI, KII, beta, 0.1 * r2, 0.7 * r2, r2 / 160, T, &Tm);
+          EXPECT_NEAR(Tm / Ts, T / Ts, 0.005) << "beta " << beta << " T " << T;
+        }
 }
 
 // K from J: the size from J, the ratio and signs from the correlation
