@@ -60,6 +60,10 @@
 #   tip-yoffe-jin  tip-yoffe-j with the inertia term of the dynamic
 #              J-integral ('jinertia yes'); bench/kfit_inertia.sh
 #   tip-yoffe-iin  tip-yoffe-i with it
+#   tip-ts-RC  tip-yoffe-is with the branching rule on the T-stress
+#              ('branch tstress r_c', r_c = RC mm): a tip with G >= 2 G_c
+#              branches where its two-term field's hoop stress at r_c has a
+#              maximum each side of its line
 #   tip-yoffe-is  tip-yoffe-i with the kink that leaves each segment's end
 #              in mode I by the T-stress ('tipdir segment'); tip-yoffe-iins
 #              the same with 'jinertia yes'
@@ -152,6 +156,7 @@ vars_of() {    # setting [kalthoff|branching]
       case "${1#tip-ystep-}" in j) kf=j ;; jin) kf=j; jn=yes ;; i) kf=interaction ;; iin) kf=interaction; jn=yes ;;
         *) echo "bench/fracture.sh: unknown setting '$1' (tip-ystep-j, -jin, -i, -iin)" >&2; return 1 ;; esac
       echo "-var crit tip -var branch yoffe/step -var kfit $kf -var jin $jn -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    tip-ts-*) echo "-var crit tip -var branch tstress -var brc $("$PY" -c "print(float('${1#tip-ts-}') * 1e-3)") -var kfit interaction -var tipdir segment -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-yoffe-is) echo "$(vars_of tip-yoffe-i) -var tipdir segment" ;;
     tip-yoffe-iins) echo "$(vars_of tip-yoffe-iin) -var tipdir segment" ;;
     tipg-is) echo "$(vars_of tipg-i) -var tipdir segment" ;;
@@ -169,7 +174,7 @@ vars_of() {    # setting [kalthoff|branching]
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-yoffe-is tip-yoffe-iins tip-ystep-j tip-ystep-jin tip-ystep-i tip-ystep-iin tipg-j tipg-jin tipg-j-seg-N tipg-i tipg-is tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-yoffe-is tip-yoffe-iins tip-ts-RC tip-ystep-j tip-ystep-jin tip-ystep-i tip-ystep-iin tipg-j tipg-jin tipg-j-seg-N tipg-i tipg-is tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }

@@ -145,6 +145,9 @@ void PairTLSPHDamage::settings(int narg, char **arg)
   if (have_branch && !tipmode)
     error->all(FLERR, "pair_style tlsph/damage: branch, tipdir, tipseg, kfit, jinertia, jring "
                       "and tipparam are settings of 'criterion tip'");
+  if (crack->branch == -3.0 && crack->kfit != 3)
+    error->all(FLERR, "pair_style tlsph/damage: branch tstress takes the T-stress from the "
+                      "interaction integrals: it needs kfit interaction");
   if (crack->tipdir_seg && crack->kfit != 3)
     error->all(FLERR, "pair_style tlsph/damage: tipdir segment takes the T-stress from the "
                       "interaction integrals: it needs kfit interaction");

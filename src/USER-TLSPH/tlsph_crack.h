@@ -498,6 +498,45 @@ inline YoffeBranches yoffe_branches(int n, const double *u, const double *hoop, 
   return r;
 }
 
+/* The branching rule 'branch tstress': the hoop stress of the tip's
+   two-term field (K_I, K_II and the T-stress) at a distance r_c, a length
+   of the material (after Ramulu and Kobayashi 1985, who put the crack-tip
+   field's off-axis hoop maximum at a characteristic distance beside the
+   energy condition):
+     sigma_tt(r_c, u) = cos(u/2) [K_I cos^2(u/2) - 3/2 K_II sin u] / sqrt(2 pi r_c)
+                        + T sin^2 u,
+   u from the crack's line. In mode I it has a maximum off the line on each
+   side when tau = T sqrt(2 pi r_c) / K_I > 3/8 (near u = 0 it is
+   1 + (tau - 3/8) u^2 in units of the singular term), at cos u / cos(u/2) =
+   3 / (8 tau): the maximum leaves the line at the distance
+   r_0 = 9 K_I^2 / (128 pi T^2), and the crack branches where r_0 < r_c.
+   The same maxima search as yoffe_branches (each side's largest local
+   maximum within +-window deg, tensile), on the field itself (no fit), on a
+   0.1 deg grid refined by a parabola. */
+inline YoffeBranches tstress_branches(double KI, double KII, double T, double rc, int window)
+{
+  YoffeBranches r{0, 0.0, 0.0, -1.0, -1.0, {0.0, 0.0, 0.0, 0.0, 0.0}};
+  if (!(rc > 0.0)) return r;
+  const double a = 1.0 / std::sqrt(2.0 * M_PI * rc);
+  auto hoop = [&](double u) {
+    const double c2 = std::cos(0.5 * u), s = std::sin(u);
+    return a * c2 * (KI * c2 * c2 - 1.5 * KII * s) + T * s * s;
+  };
+  const double e = 0.1 * M_PI / 180.0;
+  const int n = 10 * window;
+  for (int d = -n; d <= n; d++) {
+    if (d == 0) continue;
+    const double v = d * e, f0 = hoop(v), fm = hoop(v - e), fp = hoop(v + e);
+    if (!(f0 > fm && f0 >= fp)) continue;
+    const double den = fm - 2.0 * f0 + fp;
+    const double vm = den < 0.0 ? v + 0.5 * e * (fm - fp) / den : v;
+    if (d < 0 && (r.bl < 0.0 || f0 > r.bl)) r.bl = f0, r.ul = vm;
+    if (d > 0 && (r.br < 0.0 || f0 > r.br)) r.br = f0, r.ur = vm;
+  }
+  r.split = (r.bl > 0.0 && r.br > 0.0 && r.ul < 0.0 && r.ur > 0.0) ? 1 : 0;
+  return r;
+}
+
 }    // namespace TLSPH
 
 #endif

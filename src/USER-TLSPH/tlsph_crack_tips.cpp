@@ -56,6 +56,7 @@ void TLSPHCrackTips::defaults()
   p_hoopr = 2.0;
   p_window = 65;
   p_split = 1.0;
+  p_rc = 0.0;
 }
 
 /* the tip keywords of pair_style tlsph/damage: tipdir faces|hoop|segment,
@@ -141,14 +142,24 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
       branch = -1.0;
     } else if (strcmp(arg[iarg + 1], "yoffe/step") == 0) {
       branch = -2.0;
+    } else if (strcmp(arg[iarg + 1], "tstress") == 0) {
+      if (iarg + 2 >= narg)
+        error->all(FLERR, "pair_style tlsph/damage: branch tstress needs the distance r_c (a length > 0)");
+      const double rc = TLSPHInput::number(error, "pair_style tlsph/damage", "branch tstress", arg[iarg + 2]);
+      if (!(rc > 0.0))
+        error->all(FLERR, "pair_style tlsph/damage: branch tstress needs the distance r_c > 0, got {}",
+                   arg[iarg + 2]);
+      branch = -3.0;
+      p_rc = rc;
+      return 3;
     } else {
       // (a word other than these two gets the message that lists them)
       const char *v = arg[iarg + 1];
       const double a =
           utils::is_double(v) ? TLSPHInput::number(error, "pair_style tlsph/damage", key, v) : -1.0;
       if (!(a >= 0.0 && a < 90.0))
-        error->all(FLERR, "pair_style tlsph/damage: branch must be 'yoffe', 'yoffe/step' or an "
-                          "angle in [0, 90) degrees, got {}", arg[iarg + 1]);
+        error->all(FLERR, "pair_style tlsph/damage: branch must be 'yoffe', 'yoffe/step', "
+                          "'tstress' or an angle in [0, 90) degrees, got {}", arg[iarg + 1]);
       branch = a * M_PI / 180.0;
     }
     return 2;
@@ -167,11 +178,12 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
 
 void TLSPHCrackTips::write_restart(FILE *fp, int tipmode)
 {
-  double w[6] = {(double) tipmode + 8.0, (double) (tipdir_hoop + 2 * kfit + 8 * tipdir_seg), seg, branch,
+  double w[6] = {(double) tipmode + 16.0, (double) (tipdir_hoop + 2 * kfit + 8 * tipdir_seg), seg, branch,
                  (double) ready, (double) list.size()};
   fwrite(w, sizeof(double), 6, fp);
-  const double jr[8] = {jr1, jr2, p_sample, p_disc, p_hoopr, (double) p_window, p_split, (double) jinertia};
-  fwrite(jr, sizeof(double), 8, fp);
+  const double jr[9] = {jr1, jr2, p_sample, p_disc, p_hoopr, (double) p_window, p_split, (double) jinertia,
+                        p_rc};
+  fwrite(jr, sizeof(double), 9, fp);
   for (const auto &tp : list) {
     std::vector<double> r = {(double) tp.path.size(), tp.t[0], tp.t[1], tp.seg, tp.own,
                              (double) tp.alive, (double) (tp.growing + 2 * tp.newborn)};
@@ -188,12 +200,13 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   // layouts: tipmode + 8: the ring, the tipparam values and jinertia
   // follow; + 4: the ring and the tipparam values; + 2: the ring only;
   // tipmode alone: none (the defaults)
-  const int extra = (w[0] >= 8.0) ? 8 : (w[0] >= 4.0) ? 7 : (w[0] >= 2.0) ? 2 : 0;
-  if (extra == 8) w[0] -= 8.0;
+  const int extra = (w[0] >= 16.0) ? 9 : (w[0] >= 8.0) ? 8 : (w[0] >= 4.0) ? 7 : (w[0] >= 2.0) ? 2 : 0;
+  if (extra == 9) w[0] -= 16.0;
+  else if (extra == 8) w[0] -= 8.0;
   else if (extra == 7) w[0] -= 4.0;
   else if (extra == 2) w[0] -= 2.0;
   if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 15.0 && w[1] == std::floor(w[1])) &&
-        w[2] >= 0.0 && (w[3] == -1.0 || w[3] == -2.0 || (w[3] >= 0.0 && w[3] < 2.0)) &&
+        w[2] >= 0.0 && (w[3] == -1.0 || w[3] == -2.0 || w[3] == -3.0 || (w[3] >= 0.0 && w[3] < 2.0)) &&
         (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 &&
         w[5] == std::floor(w[5]) && w[5] < 1.0e7))
     error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
@@ -208,12 +221,13 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   ready = static_cast<int>(w[4]);
   depth_ready = 0;
   if (extra) {
-    double jr[8];
+    double jr[9];
     if (comm->me == 0) utils::sfread(FLERR, jr, sizeof(double), extra, fp, nullptr, error);
     MPI_Bcast(jr, extra, MPI_DOUBLE, 0, world);
     if (!(jr[0] >= 0.0 && jr[1] > jr[0] && jr[1] < 1.0e3) ||
         (extra >= 7 && !(jr[2] > 0.0 && jr[3] > 0.0 && jr[4] > 0.0 && jr[5] >= 1.0 && jr[6] > 0.0)) ||
-        (extra == 8 && !(jr[7] == 0.0 || jr[7] == 1.0)))
+        (extra >= 8 && !(jr[7] == 0.0 || jr[7] == 1.0)) || (extra == 9 && !(jr[8] >= 0.0)) ||
+        (w[3] == -3.0 && !(extra == 9 && jr[8] > 0.0)))
       error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
                         "version's layout (written by another version of the package?)");
     jr1 = jr[0];
@@ -221,7 +235,8 @@ int TLSPHCrackTips::read_restart(FILE *fp)
     if (extra >= 7) {
       p_sample = jr[2], p_disc = jr[3], p_hoopr = jr[4], p_window = (int) jr[5], p_split = jr[6];
     }
-    if (extra == 8) jinertia = (int) jr[7];
+    if (extra >= 8) jinertia = (int) jr[7];
+    if (extra == 9) p_rc = jr[8];
   }
   list.assign(static_cast<size_t>(w[5]), CrackTip{});
   for (auto &tp : list) {
@@ -532,7 +547,7 @@ void TLSPHCrackTips::j_integrals(const std::vector<int> &live, const std::vector
   J.assign(nt, 0.0);
   // kfit interaction: per tip J, then the interaction integrals of modes I
   // and II, and with tipdir segment the point force's (the T-stress)
-  const int ni = Imix ? (tipdir_seg ? 3 : 2) : 0, nw = 1 + ni;
+  const int ni = Imix ? (need_t() ? 3 : 2) : 0, nw = 1 + ni;
   double **v = atom->v;
   // the stored P is the law's unless the conservative hourglass term is in it
   const bool law_P = pair->hg_form == 2 && pair->gamma != 0.0;
@@ -695,9 +710,9 @@ bool TLSPHCrackTips::may_read_hoop(int a, double seglen) const
 {
   const CrackTip &tp = list[a];
   if (!tp.alive) return false;
-  if (branch < -1.5 && tp.own >= p_split * seglen) return true;    // yoffe/step: every step
+  if (branch == -2.0 && tp.own >= p_split * seglen) return true;    // yoffe/step: every step
   if (tp.seg != 0.0) return false;
-  return tipdir_hoop || (branch < 0.0 && tp.own >= p_split * seglen);
+  return tipdir_hoop || ((branch == -1.0 || branch == -2.0) && tp.own >= p_split * seglen);
 }
 
 // some tip may read its hoop stress this step (seglen: segment_length())
@@ -1001,8 +1016,8 @@ void TLSPHCrackTips::grow()
     Kt[2 * a] = KI;
     Kt[2 * a + 1] = KII;
     tht[a] = th;
-    // tipdir segment: the T-stress (I of the point force = T / E')
-    const double Ts = (kfit == 3 && tipdir_seg) ? Eprime * It[3 * a + 2] : 0.0;
+    // tipdir segment, branch tstress: the T-stress (I of the point force = T / E')
+    const double Ts = (kfit == 3 && need_t()) ? Eprime * It[3 * a + 2] : 0.0;
     tp.KI = KI, tp.KII = KII, tp.G = Gt[a], tp.kink = th, tp.T = Ts;
     tp.speed = 0.0;
     if (Gt[a] < Gc || tp.seg != 0.0) continue;
@@ -1035,7 +1050,7 @@ void TLSPHCrackTips::grow()
   // ('branch yoffe/step': tested at every step, not only where a segment
   // starts; the tips that read their hoop stress are then those of want
   // and any other with G >= 2 G_c)
-  const int yoffe = (branch < 0.0), yoffe_step = (branch < -1.5);
+  const int yoffe = (branch == -1.0 || branch == -2.0), yoffe_step = (branch == -2.0);
   auto yoffe_candidate = [&](int a) {
     return yoffe && Gt[a] >= 2.0 * Gc && list[a].own >= p_split * seglen &&
         (yoffe_step || list[a].seg == 0.0);
@@ -1138,6 +1153,29 @@ void TLSPHCrackTips::grow()
       }
     }
   }
+
+  // 'branch tstress': a tip with G >= 2 G_c that has grown p_split segments
+  // branches, at any step, where the hoop stress of its two-term field (K_I,
+  // K_II, T) at the material's distance r_c has a maximum on each side of
+  // its line (tlsph_crack.h, tstress_branches); the branches take those
+  // directions, from the faces' direction K and T were measured in
+  if (branch == -3.0)
+    for (int a = 0; a < nt; a++) {
+      const CrackTip &tp = list[a];
+      if (!tp.alive || Gt[a] < 2.0 * Gc || tp.own < p_split * seglen) continue;
+      const double fl = std::hypot(frs[2 * a], frs[2 * a + 1]);
+      if (!(fl > 0.0)) continue;
+      const TLSPH::YoffeBranches tb = TLSPH::tstress_branches(tp.KI, tp.KII, tp.T, p_rc, p_window);
+      if (!tb.split) continue;
+      const double phi = atan2(frs[2 * a + 1], frs[2 * a]);
+      bdir[2 * a] = phi + tb.ul;
+      bdir[2 * a + 1] = phi + tb.ur;
+      bsplit[a] = 1;
+      if (comm->me == 0)
+        utils::logmesg(lmp, "pair tlsph/damage: step {} tip {}: T sqrt(2 pi r_c) / K_I = {:.3f} "
+                            "(> 3/8), branches at {:.1f} and {:.1f} deg\n", update->ntimestep, a,
+                       tp.T * sqrt(2.0 * M_PI * p_rc) / tp.KI, tb.ul * 180.0 / M_PI, tb.ur * 180.0 / M_PI);
+    }
 
   std::vector<CrackTip> born;
   std::vector<int> moved;

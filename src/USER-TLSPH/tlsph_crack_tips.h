@@ -108,6 +108,9 @@ class TLSPHCrackTips : protected Pointers {
   double p_hoopr;   // radius of the circle the hoop stress is read on [h]
   int p_window;     // branch yoffe: largest angle of a branch from the line [deg]
   double p_split;   // a tip may split once it has grown this many segments
+  double p_rc;      // branch tstress: the material's distance r_c of the hoop maximum [length]
+  // the interaction integrals also give the T-stress (tipdir segment, branch tstress)
+  bool need_t() const { return tipdir_seg || branch == -3.0; }
 
  private:
   PairTLSPHDamage *pair;

@@ -539,6 +539,41 @@ TEST(CrackTip, SegmentKinkLeavesTheSegmentsEndInModeI)
   EXPECT_EQ(TLSPH::segment_kink_angle(KI, 0.0, -1.0e6, s), 0.0);
 }
 
+// branch tstress: in mode I the two-term field's hoop stress at r_c has a
+// maximum each side of the line exactly when T sqrt(2 pi r_c) / K_I > 3/8,
+// at cos u / cos(u/2) = 3 / (8 tau); none with T <= 0; a small K_II tilts
+// the two maxima but keeps them
+TEST(CrackTip, TStressBranchesWhereTheHoopMaximumLeavesTheLine)
+{
+  const double KI = 1.0e6, rc = 1.0e-3, s2 = std::sqrt(2 * PI * rc);
+  for (double tau : {0.36, 0.37, 0.38, 0.4, 0.5, 0.6}) {
+    const TLSPH::YoffeBranches b = TLSPH::tstress_branches(KI, 0.0, tau * KI / s2, rc, 65);
+    if (tau < 0.375) {
+      EXPECT_EQ(b.split, 0) << "tau " << tau;
+      continue;
+    }
+    ASSERT_EQ(b.split, 1) << "tau " << tau;
+    // the closed form: 2 c^2 - 1 = c 3 / (8 tau), c = cos(u/2)
+    const double q = 3.0 / (8.0 * tau), c = 0.25 * (q + std::sqrt(q * q + 8.0));
+    const double u = 2.0 * std::acos(c);
+    EXPECT_NEAR(b.ur, u, 1e-4) << "tau " << tau;
+    EXPECT_NEAR(b.ul, -u, 1e-4) << "tau " << tau;
+  }
+  // (at tau = 0.8 the maxima are at +-67 deg, outside the window of 65)
+  EXPECT_EQ(TLSPH::tstress_branches(KI, 0.0, 0.8 * KI / s2, rc, 65).split, 0);
+  EXPECT_EQ(TLSPH::tstress_branches(KI, 0.0, 0.8 * KI / s2, rc, 70).split, 1);
+  EXPECT_EQ(TLSPH::tstress_branches(KI, 0.0, -2.0e7, rc, 65).split, 0);
+  EXPECT_EQ(TLSPH::tstress_branches(KI, 0.0, 0.0, rc, 65).split, 0);
+  const TLSPH::YoffeBranches b = TLSPH::tstress_branches(KI, 0.02 * KI, 0.6 * KI / s2, rc, 65);
+  ASSERT_EQ(b.split, 1);
+  EXPECT_LT(b.ur + b.ul, 0.0);    // K_II > 0 turns both towards negative angles
+  // the rule measures r_0 = 9 K_I^2 / (128 pi T^2) against r_c: the same T
+  // splits at a larger r_c, not at a smaller
+  const double T = 0.4 * KI / s2, r0 = 9.0 * KI * KI / (128.0 * PI * T * T);
+  EXPECT_EQ(TLSPH::tstress_branches(KI, 0.0, T, 1.05 * r0, 65).split, 1);
+  EXPECT_EQ(TLSPH::tstress_branches(KI, 0.0, T, 0.95 * r0, 65).split, 0);
+}
+
 // with the Williams series's second term, a stress T along the crack's line:
 // the point force's interaction integral gives T, sign included, whatever
 // K_I, K_II, the crack's direction and the ring (the K fields give it

@@ -166,6 +166,7 @@ def main():
                     help="with --crit tip: pair_style tlsph/damage tipdir (faces, hoop or segment)")
     ap.add_argument("--branch", default="yoffe",
                     help="with --crit tip: pair_style tlsph/damage branch (yoffe or yoffe/step)")
+    ap.add_argument("--brc", default="", help="with --branch tstress: its distance r_c [m]")
     ap.add_argument("--branches", type=int, default=0,
                     help="fail unless the first run logs at least this many branchings")
     ap.add_argument("--gc", type=float, default=3.0, help="the glass's fracture energy [J/m^2]")
@@ -189,6 +190,8 @@ def main():
         fam += ["-var", "tipdir", args.tipdir]
     if args.branch != "yoffe":
         fam += ["-var", "branch", args.branch]
+    if args.brc:
+        fam += ["-var", "brc", args.brc]
     if args.strength > 0:
         fam += ["-var", "strength", repr(args.strength)]
     if args.no_precrack:
