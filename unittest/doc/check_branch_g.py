@@ -1,11 +1,13 @@
-"""bench/branch_g.py and bench/kcheck_kink.py on made-up runs (ctest bench.branch_g):
+"""bench/branch_g.py, kcheck_kink.py and kcheck_seg.py on made-up runs (ctest bench.branch_g):
 
 * branch_g.py: two fake settings, one whose Kalthoff-Winkler tips stay below
   the plate's G before 45 us (a threshold exists: "yes") and one whose tips
   go above it ("no"); the Kalthoff-Winkler tips grow three straight segments
   at 70, 80 and 60 deg, so the kinks between them are 10 and 20 deg (mean 15);
 * kcheck_kink.py: the maximum tangential stress kink of a kinked tip's
-  theory (tan(theta/2) -> about -theta) and a fake log's row.
+  theory (tan(theta/2) -> about -theta) and a fake log's row;
+* kcheck_seg.py: tipdir segment's kink, and the turn that zeroes K_II / K_I
+  at a second segment's end, from three fake runs on a known line.
 
     check_branch_g.py --root REPO --workdir DIR
 Prints PASSED or FAILED (ctest matches PASSED).
@@ -97,6 +99,33 @@ def main():
         problems.append(f"kcheck_kink.py: row '{row}' not in its report ({p.stderr[-300:]})")
     if "abc1234 (binary md5 0123456789ab): 1 runs" not in ktxt:
         problems.append("kcheck_kink.py: the run's commit not in its report")
+    # kcheck_seg.py: the segment kink, and the turn that zeroes K_II / K_I
+    # from three fake second segments on the line r = 0.1 + 0.01 turn
+    import kcheck_seg as S
+    KI, KII, T = 300000.0, 30000.0, -1.0e6
+    if abs(S.segment_kink(KI, KII, 2.0e6) - K.mts_kink(KII / KI)) > 1e-15:
+        problems.append("kcheck_seg.py: with T > 0 the segment kink is not the local one")
+    ks = math.degrees(S.segment_kink(KI, KII, T))
+    kse = math.degrees(K.mts_kink(KII / (KI - 2 * T * math.sqrt(8 * S.S / math.pi))))
+    if abs(ks - kse) > 1e-9 or not -11.25 < ks < 0:
+        problems.append(f"kcheck_seg.py: segment kink {ks}, expected {kse}")
+    sd = os.path.join(a.workdir, "seg")
+    os.makedirs(sd, exist_ok=True)
+    row = lambda kI, kII, kink, t: f"   12000 0.001 300000 0 {kI} {kII} {kink} 0.03 0.001 60 {t}\n"
+    end = "Total wall time: 0:00:30\n"
+    open(os.path.join(sd, "seg-I-10-one.log"), "w").write("Step ...\n" + row(KI, KII, -11.25, T) + end)
+    for name, turn in (("0", 0.0), ("-11.25", -11.25), (f"{ks:.2f}", float(f"{ks:.2f}"))):
+        r = 0.1 + 0.01 * turn
+        open(os.path.join(sd, f"seg-I-10-{name}.log"), "w").write("Step ...\n" + row(1e5, r * 1e5, 0, T) + end)
+    sdoc = os.path.join(a.workdir, "kcheck-seg.md")
+    p = subprocess.run([sys.executable, os.path.join(a.root, "bench", "kcheck_seg.py"), "--out", sd,
+                        "--doc", sdoc], capture_output=True, text=True)
+    stxt = open(sdoc).read() if p.returncode == 0 else ""
+    rf, rs = 0.1 + 0.01 * -11.25, 0.1 + 0.01 * float(f"{ks:.2f}")
+    want = (f"| I | 10 | 0.100 | -1.000 | {T * math.sqrt(2 * math.pi * S.S) / KI:.2f} | -11.25 | {ks:.2f} | "
+            f"-10.00 | 0.100 | {rf:.3f} | {rs:.3f} | 1.12 | {ks / -10:.2f} |")
+    if want not in stxt:
+        problems.append(f"kcheck_seg.py: row '{want}' not in its report ({p.stderr[-300:]}{stxt[-400:]})")
     for pr in problems:
         print("problem:", pr)
     print("FAILED" if problems else "PASSED")
