@@ -8,7 +8,7 @@ of K_I, K_II) and of 'tipdir segment' (the same kink of K_II against
 K_I - 2 T sqrt(8 s / pi) where T < 0, s the segment: pair_tlsph_damage.rst,
 Cotterell and Rice 1980); and, from the runs with a second straight segment
 of s turned by 0, by the faces kink and by the segment kink, K_II / K_I at
-its end and the turn that makes it zero (the quadratic through the three).
+its end and the turn that makes it zero (the least-squares line through the three).
 --kinks MODE THETA prints the two kinks [deg] of one case for the run script.
 """
 import argparse
@@ -48,20 +48,18 @@ def kinks(out, mode, th):
 
 
 def zero_of(pts):
-    """the turn where K_II / K_I = 0, from the quadratic through three (turn, ratio) points"""
-    (x0, y0), (x1, y1), (x2, y2) = sorted(pts)
-    # Newton's divided differences, then the root nearest the bracket
-    d01, d12 = (y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1)
-    c2 = (d12 - d01) / (x2 - x0)
-    b = d01 - c2 * (x0 + x1)
-    c = y0 - d01 * x0 + c2 * x0 * x1
-    if abs(c2) < 1e-14:
-        return -c / b
-    disc = b * b - 4 * c2 * c
-    if disc < 0:
+    """the turn where K_II / K_I = 0, from the least-squares line through the (turn, ratio) points
+    (a quadratic through three of them, two of which lie close together, turns the noise of the
+    third digit into its curvature)"""
+    n = len(pts)
+    mx = sum(p[0] for p in pts) / n
+    my = sum(p[1] for p in pts) / n
+    sxx = sum((p[0] - mx) ** 2 for p in pts)
+    sxy = sum((p[0] - mx) * (p[1] - my) for p in pts)
+    if sxx == 0.0 or sxy == 0.0:
         return float("nan")
-    roots = [(-b + sg * math.sqrt(disc)) / (2 * c2) for sg in (1, -1)]
-    return min(roots, key=lambda r: abs(r - 0.5 * (x0 + x2)))
+    b = sxy / sxx
+    return mx - my / b
 
 
 def main():
@@ -113,8 +111,8 @@ def main():
           "K_II / K_I and T (compute tlsph/crack/tips columns 4, 5, 11; T also as T sqrt(2 pi s) "
           "/ K_I), the kink of `tipdir faces` and of `tipdir segment` from them. Then a second "
           "straight segment of s from the kink's end, turned by 0, by the faces kink and by the "
-          "segment kink: K_II / K_I at its end, and the turn that zeroes it (the quadratic "
-          "through the three). A rule whose turn is past that zero leaves the segment's end with "
+          "segment kink: K_II / K_I at its end, and the turn that zeroes it (the least-squares "
+          "line through the three). A rule whose turn is past that zero leaves the segment's end with "
           "K_II of the sign opposite to the kinked tip's (the next segment turns back: a "
           "zigzag); one short of it leaves the same sign.", "",
           "| load | theta [deg] | kinked tip K_II / K_I | T [MPa] | T sqrt(2 pi s) / K_I | "

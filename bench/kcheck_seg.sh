@@ -11,7 +11,7 @@
 # kink) and that of 'tipdir segment'. Then the same crack with a second
 # straight segment of 4.5 h from the kink's end, turned by 0, by the faces
 # kink and by the segment kink (-var kink2): K_II / K_I at its end, and the
-# turn that would zero it (by interpolation between the three). Two runs at
+# turn that would zero it (the least-squares line through the three). Two runs at
 # a time; each run's commit and binary go to bench/out/kcheck-seg/runs.txt.
 # Writes bench/kcheck-seg.md (bench/kcheck_seg.py).
 #   bash bench/kcheck_seg.sh            (LMP_TLSPH= another binary)
