@@ -12,13 +12,20 @@
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mkdir -p "$HERE/out"
-for s in tipg-j tipg-jin tipg-j-seg-9 tipg-j-seg-18 tipg-i; do
+# (bench/zigzag_segment.sh runs other settings into another report:
+# BRANCH_G_SETTINGS, BRANCH_G_NAME, BRANCH_G_TITLE)
+read -r -a settings <<< "${BRANCH_G_SETTINGS:-tipg-j tipg-jin tipg-j-seg-9 tipg-j-seg-18 tipg-i}"
+name="${BRANCH_G_NAME:-branch-g}"
+for s in "${settings[@]}"; do
   KDX="${KDX-1.67 1.33 1.11 1.0 0.833 0.667 0.5}" BDX="" NO_REPORT=1 \
-    bash "$HERE/fracture.sh" "$s" > "$HERE/out/branch-g-$s-k.txt" 2>&1 &
+    bash "$HERE/fracture.sh" "$s" > "$HERE/out/$name-$s-k.txt" 2>&1 &
   k=$!
   KDX="" BDX="${BDX-0.5 0.333 0.286 0.222}" NO_REPORT=1 \
-    bash "$HERE/fracture.sh" "$s" > "$HERE/out/branch-g-$s-b.txt" 2>&1 &
+    bash "$HERE/fracture.sh" "$s" > "$HERE/out/$name-$s-b.txt" 2>&1 &
   b=$!
   wait "$k" "$b"
 done
-/usr/bin/python3 "$HERE/branch_g.py" --out "$HERE/out/fracture" --doc "$HERE/branch-g.md" tipg-j tipg-jin tipg-j-seg-9 tipg-j-seg-18 tipg-i
+title=()
+[ -n "${BRANCH_G_TITLE:-}" ] && title=(--title "$BRANCH_G_TITLE")
+/usr/bin/python3 "$HERE/branch_g.py" --out "$HERE/out/fracture" --doc "$HERE/$name.md" \
+  --intro "$HERE/$name-notes.md" "${title[@]}" "${settings[@]}"

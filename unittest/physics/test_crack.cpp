@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <cstdio>
 
 namespace {
@@ -400,6 +401,40 @@ TEST(CrackTip, DomainJOfAStandingWaveIsZeroWithItsInertiaTerm)
   EXPECT_GE(cases, 30);    // (34 of the 72)
 }
 
+namespace {
+// an auxiliary field of the interaction integral at (x, y): its displacement
+// gradient Ha against central differences of its displacement u(x, y, out)
+// (within tolH) and its stress Pa against Hooke's law of Ha (within tolP)
+template <class U>
+void expect_aux_field(const double Ha[2][2], const double Pa[2][2], double x, double y, U u, double mu,
+                      double lam, double tolH, double tolP, const std::string &what)
+{
+  const double s = 1e-6 * std::hypot(x, y);
+  for (int j = 0; j < 2; j++) {
+    double up[2], um[2];
+    u(x + (j == 0 ? s : 0), y + (j == 1 ? s : 0), up);
+    u(x - (j == 0 ? s : 0), y - (j == 1 ? s : 0), um);
+    for (int i = 0; i < 2; i++)
+      EXPECT_NEAR(Ha[i][j], (up[i] - um[i]) / (2 * s), tolH) << what << " i " << i << " j " << j;
+  }
+  const double tr = Ha[0][0] + Ha[1][1];
+  for (int i = 0; i < 2; i++)
+    for (int j = 0; j < 2; j++)
+      EXPECT_NEAR(Pa[i][j], mu * (Ha[i][j] + Ha[j][i]) + (i == j ? lam * tr : 0.0), tolP) << what;
+}
+
+// f(nu, plane_stress, kappa, lambda) for nu 0.2 and 0.35, plane strain and
+// plane stress, shear modulus mu
+template <class F>
+void each_material(double mu, F f)
+{
+  for (double nu : {0.2, 0.35})
+    for (int pstress = 0; pstress < 2; pstress++)
+      f(nu, pstress, pstress ? (3 - nu) / (1 + nu) : 3 - 4 * nu,
+        pstress ? 2 * mu * nu / (1 - nu) : 2 * mu * nu / (1 - 2 * nu));
+}
+}    // namespace
+
 // the auxiliary fields of the interaction integral: their displacement
 // gradient is that of williams_u (central differences), and their stress is
 // Hooke's law of it (plane strain and plane stress), at points all around
@@ -407,38 +442,24 @@ TEST(CrackTip, DomainJOfAStandingWaveIsZeroWithItsInertiaTerm)
 TEST(CrackTip, InteractionAuxiliaryFieldsAreWilliams)
 {
   const double mu = 13.3e9;
-  for (double nu : {0.2, 0.35})
-    for (int pstress = 0; pstress < 2; pstress++) {
-      const double kappa = pstress ? (3 - nu) / (1 + nu) : 3 - 4 * nu;
-      const double lam = pstress ? 2 * mu * nu / (1 - nu) : 2 * mu * nu / (1 - 2 * nu);
-      for (int mode = 0; mode < 2; mode++)
-        for (double th : {-3.0, -2.1, -0.9, 0.0, 0.4, 1.7, 2.9})
-          for (double r : {1e-4, 3e-3}) {
-            double Ha[2][2], Pa[2][2];
-            TLSPH::williams_aux(mode, r, th, mu, kappa, Ha, Pa);
-            const double x = r * std::cos(th), y = r * std::sin(th), s = 1e-6 * r;
-            double scale = 0.0;
-            for (int i = 0; i < 2; i++)
-              for (int j = 0; j < 2; j++) scale = std::max(scale, std::fabs(Ha[i][j]));
-            for (int j = 0; j < 2; j++) {
-              double up[2], um[2];
-              const double xp = x + (j == 0 ? s : 0), yp = y + (j == 1 ? s : 0);
-              const double xm = x - (j == 0 ? s : 0), ym = y - (j == 1 ? s : 0);
-              williams_u(mode == 0, mode == 1, mu, kappa, std::hypot(xp, yp), std::atan2(yp, xp), up);
-              williams_u(mode == 0, mode == 1, mu, kappa, std::hypot(xm, ym), std::atan2(ym, xm), um);
-              for (int i = 0; i < 2; i++)
-                EXPECT_NEAR(Ha[i][j], (up[i] - um[i]) / (2 * s), 1e-6 * scale)
-                    << "mode " << mode << " theta " << th << " i " << i << " j " << j;
-            }
-            const double tr = Ha[0][0] + Ha[1][1];
-            for (int i = 0; i < 2; i++)
-              for (int j = 0; j < 2; j++) {
-                const double sig = mu * (Ha[i][j] + Ha[j][i]) + (i == j ? lam * tr : 0.0);
-                EXPECT_NEAR(Pa[i][j], sig, 1e-10 / std::sqrt(r))
-                    << "mode " << mode << " nu " << nu << " plane stress " << pstress << " theta " << th;
-              }
-          }
-    }
+  each_material(mu, [&](double nu, int pstress, double kappa, double lam) {
+    for (int mode = 0; mode < 2; mode++)
+      for (double th : {-3.0, -2.1, -0.9, 0.0, 0.4, 1.7, 2.9})
+        for (double r : {1e-4, 3e-3}) {
+          double Ha[2][2], Pa[2][2];
+          TLSPH::williams_aux(mode, r, th, mu, kappa, Ha, Pa);
+          double scale = 0.0;
+          for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) scale = std::max(scale, std::fabs(Ha[i][j]));
+          auto u = [&](double x, double y, double *o) {
+            williams_u(mode == 0, mode == 1, mu, kappa, std::hypot(x, y), std::atan2(y, x), o);
+          };
+          expect_aux_field(Ha, Pa, r * std::cos(th), r * std::sin(th), u, mu, lam, 1e-6 * scale,
+                           1e-10 / std::sqrt(r),
+                           "mode " + std::to_string(mode) + " nu " + std::to_string(nu) + " plane stress " +
+                               std::to_string(pstress) + " theta " + std::to_string(th));
+        }
+  });
 }
 
 // the point force's auxiliary field (the T-stress's): its displacement
@@ -447,45 +468,30 @@ TEST(CrackTip, InteractionAuxiliaryFieldsAreWilliams)
 TEST(CrackTip, PointForceAuxiliaryField)
 {
   const double mu = 13.3e9;
-  for (double nu : {0.2, 0.35})
-    for (int pstress = 0; pstress < 2; pstress++) {
-      const double kappa = pstress ? (3 - nu) / (1 + nu) : 3 - 4 * nu;
-      const double lam = pstress ? 2 * mu * nu / (1 - nu) : 2 * mu * nu / (1 - 2 * nu);
-      auto u = [&](double x, double y, double *o) {
-        const double r = std::hypot(x, y), th = std::atan2(y, x), sn = std::sin(th), c = std::cos(th);
-        o[0] = -(kappa + 1) / (8 * PI * mu) * std::log(r) - sn * sn / (4 * PI * mu);
-        o[1] = -(kappa - 1) / (8 * PI * mu) * th + sn * c / (4 * PI * mu);
-      };
-      for (double th : {-3.0, -2.1, -0.9, 0.0, 0.4, 1.7, 2.9})
-        for (double r : {1e-4, 3e-3}) {
-          double Ha[2][2], Pa[2][2];
-          TLSPH::point_force_aux(r, th, mu, kappa, Ha, Pa);
-          const double x = r * std::cos(th), y = r * std::sin(th), s = 1e-6 * r;
-          const double scale = 1.0 / (mu * r);
-          for (int j = 0; j < 2; j++) {
-            double up[2], um[2];
-            u(x + (j == 0 ? s : 0), y + (j == 1 ? s : 0), up);
-            u(x - (j == 0 ? s : 0), y - (j == 1 ? s : 0), um);
-            for (int i = 0; i < 2; i++)
-              EXPECT_NEAR(Ha[i][j], (up[i] - um[i]) / (2 * s), 1e-7 * scale)
-                  << "theta " << th << " i " << i << " j " << j;
-          }
-          const double tr = Ha[0][0] + Ha[1][1];
-          for (int i = 0; i < 2; i++)
-            for (int j = 0; j < 2; j++) {
-              const double sig = mu * (Ha[i][j] + Ha[j][i]) + (i == j ? lam * tr : 0.0);
-              EXPECT_NEAR(Pa[i][j], sig, 1e-9 * mu * scale) << "nu " << nu << " plane stress " << pstress
-                                                            << " theta " << th;
-            }
-        }
-      // on the faces (theta = +-pi) the traction sigma . (0, 1) is zero
-      for (double th : {PI, -PI}) {
+  each_material(mu, [&](double nu, int pstress, double kappa, double lam) {
+    auto u = [&](double x, double y, double *o) {
+      const double r = std::hypot(x, y), th = std::atan2(y, x), sn = std::sin(th), c = std::cos(th);
+      o[0] = -(kappa + 1) / (8 * PI * mu) * std::log(r) - sn * sn / (4 * PI * mu);
+      o[1] = -(kappa - 1) / (8 * PI * mu) * th + sn * c / (4 * PI * mu);
+    };
+    for (double th : {-3.0, -2.1, -0.9, 0.0, 0.4, 1.7, 2.9})
+      for (double r : {1e-4, 3e-3}) {
         double Ha[2][2], Pa[2][2];
-        TLSPH::point_force_aux(2e-3, th, mu, kappa, Ha, Pa);
-        EXPECT_NEAR(Pa[0][1], 0.0, 1e-12 / 2e-3);
-        EXPECT_NEAR(Pa[1][1], 0.0, 1e-12 / 2e-3);
+        TLSPH::point_force_aux(r, th, mu, kappa, Ha, Pa);
+        const double scale = 1.0 / (mu * r);
+        expect_aux_field(Ha, Pa, r * std::cos(th), r * std::sin(th), u, mu, lam, 1e-7 * scale,
+                         1e-9 * mu * scale,
+                         "nu " + std::to_string(nu) + " plane stress " + std::to_string(pstress) +
+                             " theta " + std::to_string(th));
       }
+    // on the faces (theta = +-pi) the traction sigma . (0, 1) is zero
+    for (double th : {PI, -PI}) {
+      double Ha[2][2], Pa[2][2];
+      TLSPH::point_force_aux(2e-3, th, mu, kappa, Ha, Pa);
+      EXPECT_NEAR(Pa[0][1], 0.0, 1e-12 / 2e-3);
+      EXPECT_NEAR(Pa[1][1], 0.0, 1e-12 / 2e-3);
     }
+  });
 }
 
 // the interaction integral of the Williams field gives K_I and K_II, signs
