@@ -298,7 +298,7 @@ inline void williams_aux(int mode, double r, double th, double mu, double kappa,
    Its interaction integral with the actual field is T / E' (T the stress
    along the crack's line that the crack does not carry, the second term of
    Williams's series; the K fields and the higher terms give zero), as
-   ctest physics.CrackTip.InteractionIntegralOfTheWilliamsField checks.
+   ctest physics.CrackTip.InteractionIntegralGivesTheTStress checks.
    point_force_aux: its displacement gradient Ha and stress Pa at (r, theta)
    (theta from e), mu and kappa as williams_aux. */
 inline void point_force_aux(double r, double th, double mu, double kappa, double Ha[2][2],

@@ -173,7 +173,7 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
    segment), 0 to 15 (files written before kfit read as kfit tip, before
    tipdir segment as faces or hoop); tipmode + 2 marks the layout with the J ring after the six
    (files written before it have tipmode 0 or 1 there and the default ring), + 4 the ring and the
-   tipparam values, + 8 those and jinertia
+   tipparam values, + 8 those and jinertia, + 16 those and branch tstress's r_c
 ------------------------------------------------------------------------- */
 
 void TLSPHCrackTips::write_restart(FILE *fp, int tipmode)
@@ -197,7 +197,8 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   double w[6];
   if (comm->me == 0) utils::sfread(FLERR, w, sizeof(double), 6, fp, nullptr, error);
   MPI_Bcast(w, 6, MPI_DOUBLE, 0, world);
-  // layouts: tipmode + 8: the ring, the tipparam values and jinertia
+  // layouts: tipmode + 16: the ring, the tipparam values, jinertia and r_c;
+  // + 8: the ring, the tipparam values and jinertia
   // follow; + 4: the ring and the tipparam values; + 2: the ring only;
   // tipmode alone: none (the defaults)
   const int extra = (w[0] >= 16.0) ? 9 : (w[0] >= 8.0) ? 8 : (w[0] >= 4.0) ? 7 : (w[0] >= 2.0) ? 2 : 0;
