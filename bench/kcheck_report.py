@@ -25,7 +25,8 @@ K0 = LOAD * math.sqrt(math.pi * A) * F
 
 
 def rows(path):
-    """thermo rows of the run: step, time, K1_I, K1_II, K2_I, K2_II, ke, se, resets"""
+    """thermo rows of the run: step, time, K1_I, K1_II, K2_I, K2_II, ke, se, resets (and, since
+    in.kcheck reports them, the two tips' T-stress)"""
     r, on = [], False
     try:
         lines = open(path).readlines()
@@ -37,7 +38,7 @@ def rows(path):
             continue
         if on:
             w = line.split()
-            if len(w) == 9 and re.match(r"^\d+$", w[0]):
+            if len(w) in (9, 11) and re.match(r"^\d+$", w[0]):
                 r.append([float(x) for x in w])
             elif line.startswith("Loop time"):
                 on = False
