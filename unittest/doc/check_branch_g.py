@@ -1,4 +1,4 @@
-"""bench/branch_g.py, kcheck_kink.py and kcheck_seg.py on made-up runs (ctest bench.branch_g):
+"""bench/branch_g.py, kcheck_kink.py, kcheck_seg.py and kcheck_t.py on made-up runs (ctest bench.branch_g):
 
 * branch_g.py: two fake settings, one whose Kalthoff-Winkler tips stay below
   the plate's G before 45 us (a threshold exists: "yes") and one whose tips
@@ -7,7 +7,8 @@
 * kcheck_kink.py: the maximum tangential stress kink of a kinked tip's
   theory (tan(theta/2) -> about -theta) and a fake log's row;
 * kcheck_seg.py: tipdir segment's kink, and the turn that zeroes K_II / K_I
-  at a second segment's end, from three fake runs on a known line.
+  at a second segment's end, from three fake runs on a known line;
+* kcheck_t.py: T / sigma against theory and the error's trend with dx.
 
     check_branch_g.py --root REPO --workdir DIR
 Prints PASSED or FAILED (ctest matches PASSED).
@@ -126,6 +127,23 @@ def main():
             f"-10.00 | 0.100 | {rf:.3f} | {rs:.3f} | 1.12 | {ks / -10:.2f} |")
     if want not in stxt:
         problems.append(f"kcheck_seg.py: row '{want}' not in its report ({p.stderr[-300:]}{stxt[-400:]})")
+    # kcheck_t.py: T / sigma of both tips against -1 (uniaxial) and 0
+    # (biaxial), and the error's trend, from fake relaxed runs
+    td = os.path.join(a.workdir, "tstress")
+    os.makedirs(td, exist_ok=True)
+    for mode, dx, t in (("I", "0.001", -0.95e6), ("I", "0.0005", -0.98e6), ("biaxial", "0.001", 0.02e6),
+                        ("biaxial", "0.0005", -0.03e6)):
+        open(os.path.join(td, f"t-{mode}-{dx}.log"), "w").write(
+            f"Step ...\n   8000 0.0008 137000 0 137000 0 5e-9 0.097 59 {t} {t}\nTotal wall time: 0:00:07\n")
+    tdoc = os.path.join(a.workdir, "kcheck-t.md")
+    p = subprocess.run([sys.executable, os.path.join(a.root, "bench", "kcheck_t.py"), "--out", td,
+                        "--doc", tdoc], capture_output=True, text=True)
+    ttxt = open(tdoc).read() if p.returncode == 0 else ""
+    for want in ("| I | 1 | -0.9500 | -0.9500 | -1 | +0.0500 |", "| I | 0.5 | -0.9800 | -0.9800 | -1 | +0.0200 |",
+                 "`I`: |error| 0.0500, 0.0200 at the finer dx: it falls with dx",
+                 "`biaxial`: |error| 0.0200, 0.0300: it does not fall steadily with dx"):
+        if want not in ttxt:
+            problems.append(f"kcheck_t.py: '{want}' not in its report ({p.stderr[-300:]})")
     for pr in problems:
         print("problem:", pr)
     print("FAILED" if problems else "PASSED")
