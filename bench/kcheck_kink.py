@@ -46,6 +46,18 @@ def last_thermo(path):
     return rows[-1] if rows else None
 
 
+def report_cli(doc):
+    """the report scripts' command line (--out RUNS --doc REPORT), the repository's root and
+    the commit the report is written at (git describe --dirty)"""
+    ap = argparse.ArgumentParser(description=doc.split("\n")[0])
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--doc", required=True)
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    commit = subprocess.run(["git", "-C", root, "describe", "--always", "--dirty"],
+                            capture_output=True, text=True).stdout.strip()
+    return ap.parse_args(), root, commit
+
+
 def notes(root, name):
     """the lines of bench/NAME-notes.md (the findings a report puts after its title), if it exists"""
     path = os.path.join(root, "bench", f"{name}-notes.md")
@@ -70,13 +82,7 @@ def runs_made(out, logs):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--doc", required=True)
-    a = ap.parse_args()
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    commit = subprocess.run(["git", "-C", root, "describe", "--always", "--dirty"],
-                            capture_output=True, text=True).stdout.strip()
+    a, root, commit = report_cli(__doc__)
     rows = []
     for f in sorted(glob.glob(os.path.join(a.out, "kink-*.log"))):
         m = re.search(r"kink-(\w+)-(\w+)-([0-9.]+)-([0-9.]+)-([0-9.]+)\.log$", f)

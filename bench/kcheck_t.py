@@ -10,28 +10,20 @@ width's correction is not applied) and T = 0 under equibiaxial tension
 (mode biaxial), as a fraction of sigma = 1 MPa; and the error's trend with
 dx.
 """
-import argparse
 import glob
 import os
 import re
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from kcheck_kink import last_thermo, notes, runs_made  # noqa: E402
+from kcheck_kink import last_thermo, notes, report_cli, runs_made  # noqa: E402
 
 SIGMA = 1.0e6   # in.kcheck's load [Pa]
 THEORY = {"I": -1.0, "biaxial": 0.0}
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--doc", required=True)
-    a = ap.parse_args()
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    commit = subprocess.run(["git", "-C", root, "describe", "--always", "--dirty"],
-                            capture_output=True, text=True).stdout.strip()
+    a, root, commit = report_cli(__doc__)
     res, logs = {}, []
     for f in glob.glob(os.path.join(a.out, "t-*.log")):
         m = re.search(r"t-(\w+)-([0-9.]+)\.log$", f)
