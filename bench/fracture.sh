@@ -64,6 +64,10 @@
 #              ('branch tstress r_c', r_c = RC mm): a tip with G >= 2 G_c
 #              branches where its two-term field's hoop stress at r_c has a
 #              maximum each side of its line
+#   tip-tsd-RC  tip-ts-RC with the running tip's field ('branch
+#              tstress/dynamic r_c'): the hoop stress of the singular field
+#              of a tip at its speed v = c_R (1 - G_c / G), K from G at that
+#              speed (Freund's A_I, A_II), plus T
 #   tip-yoffe-is  tip-yoffe-i with the kink that leaves each segment's end
 #              in mode I by the T-stress ('tipdir segment'); tip-yoffe-iins
 #              the same with 'jinertia yes'
@@ -156,6 +160,7 @@ vars_of() {    # setting [kalthoff|branching]
       case "${1#tip-ystep-}" in j) kf=j ;; jin) kf=j; jn=yes ;; i) kf=interaction ;; iin) kf=interaction; jn=yes ;;
         *) echo "bench/fracture.sh: unknown setting '$1' (tip-ystep-j, -jin, -i, -iin)" >&2; return 1 ;; esac
       echo "-var crit tip -var branch yoffe/step -var kfit $kf -var jin $jn -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    tip-tsd-*) echo "$(vars_of "tip-ts-${1#tip-tsd-}" | sed 's/-var branch tstress /-var branch tstress\/dynamic /')" ;;
     tip-ts-*) echo "-var crit tip -var branch tstress -var brc $("$PY" -c "print(float('${1#tip-ts-}') * 1e-3)") -var kfit interaction -var tipdir segment -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-yoffe-is) echo "$(vars_of tip-yoffe-i) -var tipdir segment" ;;
     tip-yoffe-iins) echo "$(vars_of tip-yoffe-iin) -var tipdir segment" ;;

@@ -145,9 +145,10 @@ void PairTLSPHDamage::settings(int narg, char **arg)
   if (have_branch && !tipmode)
     error->all(FLERR, "pair_style tlsph/damage: branch, tipdir, tipseg, kfit, jinertia, jring "
                       "and tipparam are settings of 'criterion tip'");
-  if (crack->branch == -3.0 && crack->kfit != 3)
-    error->all(FLERR, "pair_style tlsph/damage: branch tstress takes the T-stress from the "
-                      "interaction integrals: it needs kfit interaction");
+  if (crack->tstress_rule() && crack->kfit != 3)
+    error->all(FLERR, "pair_style tlsph/damage: branch {} takes the T-stress from the "
+                      "interaction integrals: it needs kfit interaction",
+               crack->branch == TLSPHCrackTips::TSTRESS ? "tstress" : "tstress/dynamic");
   if (crack->tipdir_seg && crack->kfit != 3)
     error->all(FLERR, "pair_style tlsph/damage: tipdir segment takes the T-stress from the "
                       "interaction integrals: it needs kfit interaction");
@@ -343,7 +344,7 @@ void PairTLSPHDamage::init_style()
                           "alike): type {} has strength {}, type 1 {}", t, strength[t], strength[1]);
     crack->init(plane_stress ? m.E : m.E / (1.0 - m.nu * m.nu), m.mu,
                 plane_stress ? (3.0 - m.nu) / (1.0 + m.nu) : 3.0 - 4.0 * m.nu, Gc[1],
-                sqrt(m.mu / m.rho) * (0.862 + 1.14 * m.nu) / (1.0 + m.nu),
+                sqrt(m.mu / m.rho) * (0.862 + 1.14 * m.nu) / (1.0 + m.nu), sqrt(m.mu / m.rho),
                 (int) strength.size() > 1 ? strength[1] : 0.0);
     nuc_screen_s = (int) strength.size() > 1 ? strength[1] : 0.0;
   } else {

@@ -513,14 +513,124 @@ inline YoffeBranches yoffe_branches(int n, const double *u, const double *hoop, 
    The same maxima search as yoffe_branches (each side's largest local
    maximum within +-window deg, tensile), on the field itself (no fit), on a
    0.1 deg grid refined by a parabola. */
-inline YoffeBranches tstress_branches(double KI, double KII, double T, double rc, int window)
+/* The singular field of a tip running at a constant speed v (Freund 1990,
+   sections 4.3.1-4.3.2; Yoffe 1951 for mode I), in the tip's frame, x_1
+   along the crack's line: with b_d = v / c_d, b_s = v / c_s, alpha_j =
+   sqrt(1 - b_j^2), D = 4 alpha_d alpha_s - (1 + alpha_s^2)^2 (zero at the
+   Rayleigh speed), and on the ray at angle u the scaled angles and radii
+   tan u_j = alpha_j tan u, g_j = sqrt(1 - (b_j sin u)^2):
+     mode I  (K_I / sqrt(2 pi r)):
+       s11 = [(1 + a_s^2)(1 + 2 a_d^2 - a_s^2) C_d - 4 a_d a_s C_s] / D
+       s22 = [-(1 + a_s^2)^2 C_d + 4 a_d a_s C_s] / D
+       s12 = 2 a_d (1 + a_s^2) (S_d - S_s) / D
+     mode II (K_II / sqrt(2 pi r)):
+       s11 = -2 a_s [(1 + 2 a_d^2 - a_s^2) S_d - (1 + a_s^2) S_s] / D
+       s22 = 2 a_s (1 + a_s^2) (S_d - S_s) / D
+       s12 = [4 a_d a_s C_d - (1 + a_s^2)^2 C_s] / D
+   with C_j = cos(u_j / 2) / sqrt(g_j), S_j = sin(u_j / 2) / sqrt(g_j). At v
+   -> 0 it is the static field (tested), at u = 0 s22 (mode I) and s12 (mode
+   II) are 1 (the definition of K), and on the faces (u = +-pi) the
+   tractions vanish. c_d / c_s from kappa: c_d^2 / c_s^2 = (kappa + 1) /
+   (kappa - 1) in plane strain (kappa = 3 - 4 nu) and plane stress (kappa =
+   (3 - nu) / (1 + nu)) alike. Below v = 1e-3 c_s the static field is used
+   (D and the brackets both vanish as v^2). */
+struct RunningTip {
+  double ad, as, bd, bs, D;
+  bool stat;
+};
+inline RunningTip running_tip(double v_over_cs, double kappa)
+{
+  RunningTip t{1.0, 1.0, 0.0, 0.0, 0.0, true};
+  if (!(v_over_cs > 1.0e-3)) return t;
+  t.stat = false;
+  t.bs = v_over_cs;
+  t.bd = v_over_cs * std::sqrt((kappa - 1.0) / (kappa + 1.0));
+  t.as = std::sqrt(std::max(0.0, 1.0 - t.bs * t.bs));
+  t.ad = std::sqrt(std::max(0.0, 1.0 - t.bd * t.bd));
+  t.D = 4.0 * t.ad * t.as - (1.0 + t.as * t.as) * (1.0 + t.as * t.as);
+  return t;
+}
+/* the stress (s11, s22, s12) of the unit K of mode 1 or 2 at angle u, r with
+   sqrt(2 pi r) = 1, in the tip's frame */
+inline void running_tip_stress(const RunningTip &t, int mode, double u, double s[3])
+{
+  if (t.stat) {
+    const double c = std::cos(0.5 * u), sn = std::sin(0.5 * u), c3 = std::cos(1.5 * u), s3 = std::sin(1.5 * u);
+    if (mode == 1) {
+      s[0] = c * (1.0 - sn * s3);
+      s[1] = c * (1.0 + sn * s3);
+      s[2] = c * sn * c3;
+    } else {
+      s[0] = -sn * (2.0 + c * c3);
+      s[1] = sn * c * c3;
+      s[2] = c * (1.0 - sn * s3);
+    }
+    return;
+  }
+  const double cu = std::cos(u), su = std::sin(u);
+  const double ud = std::atan2(t.ad * su, cu), us = std::atan2(t.as * su, cu);
+  const double gd = std::sqrt(std::sqrt(cu * cu + t.ad * t.ad * su * su));
+  const double gs = std::sqrt(std::sqrt(cu * cu + t.as * t.as * su * su));
+  const double Cd = std::cos(0.5 * ud) / gd, Cs = std::cos(0.5 * us) / gs;
+  const double Sd = std::sin(0.5 * ud) / gd, Ss = std::sin(0.5 * us) / gs;
+  const double a2 = 1.0 + t.as * t.as;
+  if (mode == 1) {
+    s[0] = (a2 * (1.0 + 2.0 * t.ad * t.ad - t.as * t.as) * Cd - 4.0 * t.ad * t.as * Cs) / t.D;
+    s[1] = (-a2 * a2 * Cd + 4.0 * t.ad * t.as * Cs) / t.D;
+    s[2] = 2.0 * t.ad * a2 * (Sd - Ss) / t.D;
+  } else {
+    s[0] = -2.0 * t.as * ((1.0 + 2.0 * t.ad * t.ad - t.as * t.as) * Sd - a2 * Ss) / t.D;
+    s[1] = 2.0 * t.as * a2 * (Sd - Ss) / t.D;
+    s[2] = (4.0 * t.ad * t.as * Cd - a2 * a2 * Cs) / t.D;
+  }
+}
+/* Freund's universal functions of the energy release rate of a running tip,
+   G = (A_I K_I^2 + A_II K_II^2) / E': A_I = 4 b_s^2 a_d / ((kappa + 1) D),
+   A_II = 4 b_s^2 a_s / ((kappa + 1) D) (Freund 1990, eq. 5.3.10, with 1 / (1 -
+   nu) = 4 / (kappa + 1) in plane strain); both 1 at rest, growing without
+   bound towards the Rayleigh speed. */
+inline void freund_A(const RunningTip &t, double kappa, double &AI, double &AII)
+{
+  if (t.stat || !(t.D > 0.0)) {
+    AI = AII = t.stat ? 1.0 : INFINITY;
+    return;
+  }
+  AI = 4.0 * t.bs * t.bs * t.ad / ((kappa + 1.0) * t.D);
+  AII = 4.0 * t.bs * t.bs * t.as / ((kappa + 1.0) * t.D);
+}
+
+/* 'branch tstress/dynamic': the K of a tip running at v from its energy
+   release rate. K_I and K_II here come from G = (K_I^2 + K_II^2) / E', the
+   static relation, with their ratio rho = K_II / K_I; at speed, G = (A_I
+   K_I^2 + A_II K_II^2) / E' with the same ratio, so both scale by sqrt((1 +
+   rho^2) / (A_I + A_II rho^2)). */
+inline void running_k(const RunningTip &t, double kappa, double &KI, double &KII)
+{
+  if (t.stat || !(KI > 0.0)) return;
+  double AI, AII;
+  freund_A(t, kappa, AI, AII);
+  const double rho = KII / KI, f = std::sqrt((1.0 + rho * rho) / (AI + AII * rho * rho));
+  KI *= f;
+  KII *= f;
+}
+
+inline YoffeBranches tstress_branches(double KI, double KII, double T, double rc, int window,
+                                      const RunningTip &tip = RunningTip{1.0, 1.0, 0.0, 0.0, 0.0, true})
 {
   YoffeBranches r{0, 0.0, 0.0, -1.0, -1.0, {0.0, 0.0, 0.0, 0.0, 0.0}};
   if (!(rc > 0.0)) return r;
   const double a = 1.0 / std::sqrt(2.0 * M_PI * rc);
   auto hoop = [&](double u) {
-    const double c2 = std::cos(0.5 * u), s = std::sin(u);
-    return a * c2 * (KI * c2 * c2 - 1.5 * KII * s) + T * s * s;
+    const double s = std::sin(u);
+    if (tip.stat) {
+      const double c2 = std::cos(0.5 * u);
+      return a * c2 * (KI * c2 * c2 - 1.5 * KII * s) + T * s * s;
+    }
+    double s1[3], s2[3];
+    running_tip_stress(tip, 1, u, s1);
+    running_tip_stress(tip, 2, u, s2);
+    return a * (KI * hoop_stress(s1[0], s1[1], s1[2], u) + KII * hoop_stress(s2[0], s2[1], s2[2], u)) +
+        T * s * s;
   };
   const double e = 0.1 * M_PI / 180.0;
   const int n = 10 * window;

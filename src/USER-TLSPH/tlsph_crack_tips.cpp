@@ -38,7 +38,7 @@ TLSPHCrackTips::TLSPHCrackTips(LAMMPS *lmp, PairTLSPHDamage *p) : Pointers(lmp),
 {
   defaults();
   ready = depth_ready = 0;
-  Eprime = Gc = cR = depth = 0.0;
+  Eprime = Gc = cR = cs = depth = 0.0;
 }
 
 void TLSPHCrackTips::defaults()
@@ -139,17 +139,18 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
     if (iarg + 1 >= narg)
       error->all(FLERR, "pair_style tlsph/damage: branch needs a value (half angle in degrees)");
     if (strcmp(arg[iarg + 1], "yoffe") == 0) {
-      branch = -1.0;
+      branch = YOFFE;
     } else if (strcmp(arg[iarg + 1], "yoffe/step") == 0) {
-      branch = -2.0;
-    } else if (strcmp(arg[iarg + 1], "tstress") == 0) {
+      branch = YOFFE_STEP;
+    } else if (strcmp(arg[iarg + 1], "tstress") == 0 || strcmp(arg[iarg + 1], "tstress/dynamic") == 0) {
+      const std::string w = arg[iarg + 1];
       if (iarg + 2 >= narg)
-        error->all(FLERR, "pair_style tlsph/damage: branch tstress needs the distance r_c (a length > 0)");
-      const double rc = TLSPHInput::number(error, "pair_style tlsph/damage", "branch tstress", arg[iarg + 2]);
+        error->all(FLERR, "pair_style tlsph/damage: branch {} needs the distance r_c (a length > 0)", w);
+      const double rc = TLSPHInput::number(error, "pair_style tlsph/damage", "branch " + w, arg[iarg + 2]);
       if (!(rc > 0.0))
-        error->all(FLERR, "pair_style tlsph/damage: branch tstress needs the distance r_c > 0, got {}",
+        error->all(FLERR, "pair_style tlsph/damage: branch {} needs the distance r_c > 0, got {}", w,
                    arg[iarg + 2]);
-      branch = -3.0;
+      branch = w == "tstress" ? TSTRESS : TSTRESS_DYNAMIC;
       p_rc = rc;
       return 3;
     } else {
@@ -159,7 +160,8 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
           utils::is_double(v) ? TLSPHInput::number(error, "pair_style tlsph/damage", key, v) : -1.0;
       if (!(a >= 0.0 && a < 90.0))
         error->all(FLERR, "pair_style tlsph/damage: branch must be 'yoffe', 'yoffe/step', "
-                          "'tstress' or an angle in [0, 90) degrees, got {}", arg[iarg + 1]);
+                          "'tstress', 'tstress/dynamic' or an angle in [0, 90) degrees, got {}",
+                   arg[iarg + 1]);
       branch = a * M_PI / 180.0;
     }
     return 2;
@@ -207,7 +209,9 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   else if (extra == 7) w[0] -= 4.0;
   else if (extra == 2) w[0] -= 2.0;
   if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 15.0 && w[1] == std::floor(w[1])) &&
-        w[2] >= 0.0 && (w[3] == -1.0 || w[3] == -2.0 || w[3] == -3.0 || (w[3] >= 0.0 && w[3] < 2.0)) &&
+        w[2] >= 0.0 &&
+        (w[3] == YOFFE || w[3] == YOFFE_STEP || w[3] == TSTRESS || w[3] == TSTRESS_DYNAMIC ||
+         (w[3] >= 0.0 && w[3] < 2.0)) &&
         (w[4] == 0.0 || w[4] == 1.0) && w[5] >= 0.0 &&
         w[5] == std::floor(w[5]) && w[5] < 1.0e7))
     error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
@@ -228,7 +232,7 @@ int TLSPHCrackTips::read_restart(FILE *fp)
     if (!(jr[0] >= 0.0 && jr[1] > jr[0] && jr[1] < 1.0e3) ||
         (extra >= 7 && !(jr[2] > 0.0 && jr[3] > 0.0 && jr[4] > 0.0 && jr[5] >= 1.0 && jr[6] > 0.0)) ||
         (extra >= 8 && !(jr[7] == 0.0 || jr[7] == 1.0)) || (extra == 9 && !(jr[8] >= 0.0)) ||
-        (w[3] == -3.0 && !(extra == 9 && jr[8] > 0.0)))
+        ((w[3] == TSTRESS || w[3] == TSTRESS_DYNAMIC) && !(extra == 9 && jr[8] > 0.0)))
       error->all(FLERR, "pair tlsph/damage: the restart file's pair settings are not in this "
                         "version's layout (written by another version of the package?)");
     jr1 = jr[0];
@@ -262,8 +266,10 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   return tipmode;
 }
 
-void TLSPHCrackTips::init(double Ep, double shear, double kap, double G_c, double c_R, double strength)
+void TLSPHCrackTips::init(double Ep, double shear, double kap, double G_c, double c_R, double c_s,
+                          double strength)
 {
+  cs = c_s;
   Eprime = Ep;
   mu = shear;
   kappa = kap;
@@ -711,9 +717,9 @@ bool TLSPHCrackTips::may_read_hoop(int a, double seglen) const
 {
   const CrackTip &tp = list[a];
   if (!tp.alive) return false;
-  if (branch == -2.0 && tp.own >= p_split * seglen) return true;    // yoffe/step: every step
+  if (branch == YOFFE_STEP && tp.own >= p_split * seglen) return true;    // yoffe/step: every step
   if (tp.seg != 0.0) return false;
-  return tipdir_hoop || ((branch == -1.0 || branch == -2.0) && tp.own >= p_split * seglen);
+  return tipdir_hoop || ((branch == YOFFE || branch == YOFFE_STEP) && tp.own >= p_split * seglen);
 }
 
 // some tip may read its hoop stress this step (seglen: segment_length())
@@ -1051,7 +1057,7 @@ void TLSPHCrackTips::grow()
   // ('branch yoffe/step': tested at every step, not only where a segment
   // starts; the tips that read their hoop stress are then those of want
   // and any other with G >= 2 G_c)
-  const int yoffe = (branch == -1.0 || branch == -2.0), yoffe_step = (branch == -2.0);
+  const int yoffe = (branch == YOFFE || branch == YOFFE_STEP), yoffe_step = (branch == YOFFE_STEP);
   auto yoffe_candidate = [&](int a) {
     return yoffe && Gt[a] >= 2.0 * Gc && list[a].own >= p_split * seglen &&
         (yoffe_step || list[a].seg == 0.0);
@@ -1159,23 +1165,33 @@ void TLSPHCrackTips::grow()
   // branches, at any step, where the hoop stress of its two-term field (K_I,
   // K_II, T) at the material's distance r_c has a maximum on each side of
   // its line (tlsph_crack.h, tstress_branches); the branches take those
-  // directions, from the faces' direction K and T were measured in
-  if (branch == -3.0)
+  // directions, from the faces' direction K and T were measured in.
+  // 'branch tstress/dynamic': the same with the singular field of a tip
+  // running at the speed it runs at now, v = c_R (1 - G_c / G), and its K
+  // from G at that speed (tlsph_crack.h, running_tip, running_k)
+  if (tstress_rule())
     for (int a = 0; a < nt; a++) {
       const CrackTip &tp = list[a];
       if (!tp.alive || Gt[a] < 2.0 * Gc || tp.own < p_split * seglen) continue;
       const double fl = std::hypot(frs[2 * a], frs[2 * a + 1]);
       if (!(fl > 0.0)) continue;
-      const TLSPH::YoffeBranches tb = TLSPH::tstress_branches(tp.KI, tp.KII, tp.T, p_rc, p_window);
+      const bool dyn = branch == TSTRESS_DYNAMIC;
+      const double v = TLSPH::freund_speed(Gt[a], Gc, cR);
+      const TLSPH::RunningTip rt = TLSPH::running_tip(dyn ? v / cs : 0.0, kappa);
+      double KI = tp.KI, KII = tp.KII;
+      TLSPH::running_k(rt, kappa, KI, KII);
+      const TLSPH::YoffeBranches tb = TLSPH::tstress_branches(KI, KII, tp.T, p_rc, p_window, rt);
       if (!tb.split) continue;
       const double phi = atan2(frs[2 * a + 1], frs[2 * a]);
       bdir[2 * a] = phi + tb.ul;
       bdir[2 * a + 1] = phi + tb.ur;
       bsplit[a] = 1;
       if (comm->me == 0)
-        utils::logmesg(lmp, "pair tlsph/damage: step {} tip {}: T sqrt(2 pi r_c) / K_I = {:.3f} "
-                            "(> 3/8), branches at {:.1f} and {:.1f} deg\n", update->ntimestep, a,
-                       tp.T * sqrt(2.0 * M_PI * p_rc) / tp.KI, tb.ul * 180.0 / M_PI, tb.ur * 180.0 / M_PI);
+        utils::logmesg(lmp, "pair tlsph/damage: step {} tip {}: T sqrt(2 pi r_c) / K_I = {:.3f}{}, "
+                            "branches at {:.1f} and {:.1f} deg\n", update->ntimestep, a,
+                       tp.T * sqrt(2.0 * M_PI * p_rc) / KI,
+                       dyn ? fmt::format(" at v = {:.3f} c_s (K_I {:.4g} at speed)", v / cs, KI) : " (> 3/8)",
+                       tb.ul * 180.0 / M_PI, tb.ur * 180.0 / M_PI);
     }
 
   std::vector<CrackTip> born;

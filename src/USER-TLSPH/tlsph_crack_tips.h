@@ -62,7 +62,7 @@ class TLSPHCrackTips : protected Pointers {
   // from the pair's init_style: the material's E', G_c, Rayleigh speed and
   // tensile strength (0: no nucleation)
   // E', the shear modulus and kappa (3 - 4 nu, plane stress (3 - nu) / (1 + nu)), G_c, c_R, sigma_t
-  void init(double Eprime, double mu, double kappa, double Gc, double cR, double strength);
+  void init(double Eprime, double mu, double kappa, double Gc, double cR, double cs, double strength);
   // every step before the deformation pass: the bonds of the cracks
   // nucleated at the end of the last step are cut
   void cut_newborn();
@@ -101,22 +101,25 @@ class TLSPHCrackTips : protected Pointers {
   double jr1, jr2;  // kfit j, interaction: the J domain's ring, q = 1 inside r1, 0 beyond r2 [h]
   int jinertia;     // kfit j, interaction: 1 adds the inertia term of the dynamic J-integral
   double seg;       // segment length in h (0: the sampling reach)
-  double branch;    // half angle of a branching [rad] (0: never; < 0: 'yoffe')
+  double branch;    // half angle of a branching [rad] (0: never), or one of the rules below
+  // the branching rules (values of branch < 0; also in the restart files)
+  static constexpr double YOFFE = -1.0, YOFFE_STEP = -2.0, TSTRESS = -3.0, TSTRESS_DYNAMIC = -4.0;
+  bool tstress_rule() const { return branch == TSTRESS || branch == TSTRESS_DYNAMIC; }
   // tipparam: the tip model's numerical constants (scanned in bench/tipconst.md)
   double p_sample;  // start of the K samples behind the tip [h] (samples every 0.5 h, 4)
   double p_disc;    // radius of each sample's kernel disc [h]
   double p_hoopr;   // radius of the circle the hoop stress is read on [h]
   int p_window;     // branch yoffe: largest angle of a branch from the line [deg]
   double p_split;   // a tip may split once it has grown this many segments
-  double p_rc;      // branch tstress: the material's distance r_c of the hoop maximum [length]
+  double p_rc;      // branch tstress(/dynamic): the material's distance r_c of the hoop maximum [length]
   // the interaction integrals also give the T-stress (tipdir segment, branch tstress)
-  bool need_t() const { return tipdir_seg || branch == -3.0; }
+  bool need_t() const { return tipdir_seg || tstress_rule(); }
 
  private:
   PairTLSPHDamage *pair;
   std::vector<CrackTip> list;
   int ready, depth_ready;
-  double Eprime, Gc, cR, depth;
+  double Eprime, Gc, cR, cs, depth;    // cs: the shear wave speed (branch tstress/dynamic)
   double mu = 0.0, kappa = 0.0;    // the interaction integral's auxiliary fields (kfit interaction)
   double sigma_t = 0.0;    // tensile strength: cracks nucleate where the stress reaches it (0: never)
   void measure_depth();

@@ -580,6 +580,106 @@ TEST(CrackTip, TStressBranchesWhereTheHoopMaximumLeavesTheLine)
   EXPECT_EQ(TLSPH::tstress_branches(KI, 0.0, T, 0.95 * r0, 65).split, 0);
 }
 
+// the singular field of a running tip (branch tstress/dynamic): at v -> 0 the
+// static Williams field; at every speed K's definition on the line ahead
+// and traction-free faces; the mode I hoop stress keeps its maximum on the
+// line up to Yoffe's speed, about 0.6 c_s (0.60-0.65 c_s for nu = 0.2-0.3
+// in plane strain; tested in 0.55-0.70, and 0.58-0.66 for Yoffe's nu = 1/4),
+// and has one each side above it;
+// D vanishes at the Rayleigh speed (Viktorov's approximation, within 1 %),
+// where A_I and A_II grow without bound; both are 1 at rest
+TEST(CrackTip, RunningTipField)
+{
+  for (double nu : {0.2, 0.25, 0.3}) {
+    const double kappa = 3.0 - 4.0 * nu;
+    const TLSPH::RunningTip st = TLSPH::running_tip(0.0, kappa), slow = TLSPH::running_tip(0.01, kappa);
+    ASSERT_TRUE(st.stat);
+    ASSERT_FALSE(slow.stat);
+    for (int mode : {1, 2})
+      for (double u = -3.1; u <= 3.1; u += 0.1) {
+        double a[3], b[3];
+        TLSPH::running_tip_stress(st, mode, u, a);
+        TLSPH::running_tip_stress(slow, mode, u, b);
+        for (int k = 0; k < 3; k++) EXPECT_NEAR(b[k], a[k], 2e-3) << "mode " << mode << " u " << u << " k " << k;
+      }
+    // the static field itself: Williams's hoop stress cos(u/2) [K_I cos^2(u/2) - 3/2 K_II sin u]
+    for (double u = -3.0; u <= 3.0; u += 0.5) {
+      double a[3], b[3];
+      TLSPH::running_tip_stress(st, 1, u, a);
+      TLSPH::running_tip_stress(st, 2, u, b);
+      const double c = std::cos(0.5 * u);
+      EXPECT_NEAR(TLSPH::hoop_stress(a[0], a[1], a[2], u), c * c * c, 1e-12);
+      EXPECT_NEAR(TLSPH::hoop_stress(b[0], b[1], b[2], u), -1.5 * c * std::sin(u), 1e-12);
+    }
+    double AI, AII;
+    TLSPH::freund_A(st, kappa, AI, AII);
+    EXPECT_EQ(AI, 1.0);
+    TLSPH::freund_A(slow, kappa, AI, AII);
+    EXPECT_NEAR(AI, 1.0, 1e-3);
+    EXPECT_NEAR(AII, 1.0, 1e-3);
+    const double cR = (0.862 + 1.14 * nu) / (1.0 + nu);    // c_R / c_s
+    for (double vs : {0.2, 0.5, 0.8, 0.95}) {
+      const TLSPH::RunningTip t = TLSPH::running_tip(vs * cR, kappa);
+      for (int mode : {1, 2}) {
+        double s[3];
+        TLSPH::running_tip_stress(t, mode, 0.0, s);
+        EXPECT_NEAR(s[mode == 1 ? 1 : 2], 1.0, 1e-12) << "v " << vs << " mode " << mode;
+        EXPECT_NEAR(s[mode == 1 ? 2 : 1], 0.0, 1e-12);
+        for (double u : {M_PI - 1e-9, -M_PI + 1e-9}) {
+          TLSPH::running_tip_stress(t, mode, u, s);
+          EXPECT_NEAR(s[1], 0.0, 1e-4) << "faces, v " << vs << " mode " << mode;
+          EXPECT_NEAR(s[2], 0.0, 1e-4) << "faces, v " << vs << " mode " << mode;
+        }
+      }
+      double a0, a1;
+      TLSPH::freund_A(t, kappa, a0, a1);
+      double p0 = 1.0, p1 = 1.0;
+      if (vs > 0.2) TLSPH::freund_A(TLSPH::running_tip((vs - 0.3) * cR, kappa), kappa, p0, p1);
+      EXPECT_GT(a0, p0) << "A_I grows with v";
+      EXPECT_GT(a1, p1) << "A_II grows with v";
+    }
+    EXPECT_GT(TLSPH::running_tip(0.99 * cR, kappa).D, 0.0);
+    EXPECT_LT(TLSPH::running_tip(1.01 * cR, kappa).D, 0.0);
+    // Yoffe: the mode I hoop maximum leaves the line between 0.55 and 0.65 c_s
+    auto off_line = [&](double vs) {
+      const TLSPH::RunningTip t = TLSPH::running_tip(vs, kappa);
+      return TLSPH::tstress_branches(1.0e6, 0.0, 0.0, 1e-3, 65, t).split == 1;
+    };
+    EXPECT_FALSE(off_line(0.0));
+    EXPECT_FALSE(off_line(0.55)) << "nu " << nu;
+    EXPECT_TRUE(off_line(0.70)) << "nu " << nu;
+    if (nu == 0.25) {    // Yoffe's Poisson solid (lambda = mu): about 0.6 c_s
+      EXPECT_FALSE(off_line(0.58));
+      EXPECT_TRUE(off_line(0.66));
+    }
+    // a compressive T holds the maxima on the line above it, a tensile one
+    // lets them leave below it
+    const double s2 = std::sqrt(2 * PI * 1e-3);
+    EXPECT_FALSE(TLSPH::tstress_branches(1.0e6, 0.0, -0.2e6 / s2, 1e-3, 65, TLSPH::running_tip(0.65, kappa)).split);
+    EXPECT_TRUE(TLSPH::tstress_branches(1.0e6, 0.0, 0.3e6 / s2, 1e-3, 65, TLSPH::running_tip(0.45, kappa)).split);
+    EXPECT_FALSE(TLSPH::tstress_branches(1.0e6, 0.0, 0.3e6 / s2, 1e-3, 65, st).split);
+  }
+}
+
+// the K of a running tip from its G: G E' = A_I K_I^2 + A_II K_II^2 with the ratio kept
+TEST(CrackTip, RunningTipKFromG)
+{
+  const double kappa = 3.0 - 4.0 * 0.22;
+  for (double vs : {0.0, 0.3, 0.6}) {
+    const TLSPH::RunningTip t = TLSPH::running_tip(vs, kappa);
+    double AI, AII;
+    TLSPH::freund_A(t, kappa, AI, AII);
+    const double K0[2] = {2.0e6, -0.5e6};
+    double KI = K0[0], KII = K0[1];
+    TLSPH::running_k(t, kappa, KI, KII);
+    EXPECT_NEAR(AI * KI * KI + AII * KII * KII, K0[0] * K0[0] + K0[1] * K0[1], 1e-9 * K0[0] * K0[0]);
+    EXPECT_NEAR(KII / KI, K0[1] / K0[0], 1e-12);
+    if (vs > 0.0) {
+      EXPECT_LT(KI, K0[0]);
+    }
+  }
+}
+
 // with the Williams series's second term, a stress T along the crack's line:
 // the point force's interaction integral gives T, sign included, whatever
 // K_I, K_II, the crack's direction and the ring (the K fields give it

@@ -166,7 +166,7 @@ def main():
                     help="with --crit tip: pair_style tlsph/damage tipdir (faces, hoop or segment)")
     ap.add_argument("--branch", default="yoffe",
                     help="with --crit tip: pair_style tlsph/damage branch (yoffe or yoffe/step)")
-    ap.add_argument("--brc", default="", help="with --branch tstress: its distance r_c [m]")
+    ap.add_argument("--brc", default="", help="with --branch tstress or tstress/dynamic: its distance r_c [m]")
     ap.add_argument("--branches", type=int, default=0,
                     help="fail unless the first run logs at least this many branchings")
     ap.add_argument("--gc", type=float, default=3.0, help="the glass's fracture energy [J/m^2]")
