@@ -498,23 +498,8 @@ inline YoffeBranches yoffe_branches(int n, const double *u, const double *hoop, 
   return r;
 }
 
-/* The branching rule 'branch tstress': the hoop stress of the tip's
-   two-term field (K_I, K_II and the T-stress) at a distance r_c, a length
-   of the material (after Ramulu and Kobayashi 1985, who put the crack-tip
-   field's off-axis hoop maximum at a characteristic distance beside the
-   energy condition):
-     sigma_tt(r_c, u) = cos(u/2) [K_I cos^2(u/2) - 3/2 K_II sin u] / sqrt(2 pi r_c)
-                        + T sin^2 u,
-   u from the crack's line. In mode I it has a maximum off the line on each
-   side when tau = T sqrt(2 pi r_c) / K_I > 3/8 (near u = 0 it is
-   1 + (tau - 3/8) u^2 in units of the singular term), at cos u / cos(u/2) =
-   3 / (8 tau): the maximum leaves the line at the distance
-   r_0 = 9 K_I^2 / (128 pi T^2), and the crack branches where r_0 < r_c.
-   The same maxima search as yoffe_branches (each side's largest local
-   maximum within +-window deg, tensile), on the field itself (no fit), on a
-   0.1 deg grid refined by a parabola. */
 /* The singular field of a tip running at a constant speed v (Freund 1990,
-   sections 4.3.1-4.3.2; Yoffe 1951 for mode I), in the tip's frame, x_1
+   chapter 4; Yoffe 1951 for mode I), in the tip's frame, x_1
    along the crack's line: with b_d = v / c_d, b_s = v / c_s, alpha_j =
    sqrt(1 - b_j^2), D = 4 alpha_d alpha_s - (1 + alpha_s^2)^2 (zero at the
    Rayleigh speed), and on the ray at angle u the scaled angles and radii
@@ -586,8 +571,8 @@ inline void running_tip_stress(const RunningTip &t, int mode, double u, double s
 }
 /* Freund's universal functions of the energy release rate of a running tip,
    G = (A_I K_I^2 + A_II K_II^2) / E': A_I = 4 b_s^2 a_d / ((kappa + 1) D),
-   A_II = 4 b_s^2 a_s / ((kappa + 1) D) (Freund 1990, eq. 5.3.10, with 1 / (1 -
-   nu) = 4 / (kappa + 1) in plane strain); both 1 at rest, growing without
+   A_II = 4 b_s^2 a_s / ((kappa + 1) D) (Freund 1990, chapter 5, with 1 / (1 - nu)
+   = 4 / (kappa + 1) in plane strain); both 1 at rest, growing without
    bound towards the Rayleigh speed. */
 inline void freund_A(const RunningTip &t, double kappa, double &AI, double &AII)
 {
@@ -614,6 +599,22 @@ inline void running_k(const RunningTip &t, double kappa, double &KI, double &KII
   KII *= f;
 }
 
+/* The branching rule 'branch tstress': the hoop stress of the tip's
+   two-term field (K_I, K_II and the T-stress) at a distance r_c, a length
+   of the material (after Ramulu and Kobayashi 1985, who put the crack-tip
+   field's off-axis hoop maximum at a characteristic distance beside the
+   energy condition):
+     sigma_tt(r_c, u) = cos(u/2) [K_I cos^2(u/2) - 3/2 K_II sin u] / sqrt(2 pi r_c)
+                        + T sin^2 u,
+   u from the crack's line. In mode I it has a maximum off the line on each
+   side when tau = T sqrt(2 pi r_c) / K_I > 3/8 (near u = 0 it is
+   1 + (tau - 3/8) u^2 in units of the singular term), at cos u / cos(u/2) =
+   3 / (8 tau): the maximum leaves the line at the distance
+   r_0 = 9 K_I^2 / (128 pi T^2), and the crack branches where r_0 < r_c.
+   The same maxima search as yoffe_branches (each side's largest local
+   maximum within +-window deg, tensile), on the field itself (no fit), on a
+   0.1 deg grid refined by a parabola. With a running tip t ('branch
+   tstress/dynamic'), the singular field is that of running_tip_stress. */
 inline YoffeBranches tstress_branches(double KI, double KII, double T, double rc, int window,
                                       const RunningTip &tip = RunningTip{1.0, 1.0, 0.0, 0.0, 0.0, true})
 {
