@@ -68,6 +68,9 @@
 #              tstress/dynamic r_c'): the hoop stress of the singular field
 #              of a tip at its speed v = c_R (1 - G_c / G), K from G at that
 #              speed (Freund's A_I, A_II), plus T
+#   tip-tsdj-RC  tip-tsd-RC with the recommended model's fit, 'kfit j'
+#              (K's ratio from the faces' opening, T from J's ring)
+#   tip-yoffe-js  tip-yoffe-j (the recommended model) with 'tipdir segment'
 #   tip-yoffe-is  tip-yoffe-i with the kink that leaves each segment's end
 #              in mode I by the T-stress ('tipdir segment'); tip-yoffe-iins
 #              the same with 'jinertia yes'
@@ -160,6 +163,8 @@ vars_of() {    # setting [kalthoff|branching]
       case "${1#tip-ystep-}" in j) kf=j ;; jin) kf=j; jn=yes ;; i) kf=interaction ;; iin) kf=interaction; jn=yes ;;
         *) echo "bench/fracture.sh: unknown setting '$1' (tip-ystep-j, -jin, -i, -iin)" >&2; return 1 ;; esac
       echo "-var crit tip -var branch yoffe/step -var kfit $kf -var jin $jn -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    tip-tsdj-*) echo "$(vars_of "tip-tsd-${1#tip-tsdj-}" | sed 's/-var kfit interaction /-var kfit j /')" ;;
+    tip-yoffe-js) echo "$(vars_of tip-yoffe-j) -var tipdir segment" ;;
     tip-tsd-*) echo "$(vars_of "tip-ts-${1#tip-tsd-}" | sed 's/-var branch tstress /-var branch tstress\/dynamic /')" ;;
     tip-ts-*) echo "-var crit tip -var branch tstress -var brc $("$PY" -c "print(float('${1#tip-ts-}') * 1e-3)") -var kfit interaction -var tipdir segment -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-yoffe-is) echo "$(vars_of tip-yoffe-i) -var tipdir segment" ;;

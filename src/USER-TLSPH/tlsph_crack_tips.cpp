@@ -971,10 +971,13 @@ void TLSPHCrackTips::grow()
       dir.push_back(frs[2 * a + 1] / fl);
     }
     std::vector<double> Jl, Il;
-    j_integrals(live, dir, Jl, kfit == 3 ? &Il : nullptr);
+    // the interaction integrals: kfit interaction's mode ratio, and the
+    // T-stress of tipdir segment and branch tstress (also with kfit j)
+    const bool want_i = kfit == 3 || need_t();
+    j_integrals(live, dir, Jl, want_i ? &Il : nullptr);
     for (size_t k = 0; k < live.size(); k++) {
       Jt[live[k]] = Jl[k];
-      if (kfit == 3)
+      if (want_i)
         for (int m = 0; m < 3; m++) It[3 * live[k] + m] = Il[3 * k + m];
     }
   }
@@ -1024,7 +1027,7 @@ void TLSPHCrackTips::grow()
     Kt[2 * a + 1] = KII;
     tht[a] = th;
     // tipdir segment, branch tstress: the T-stress (I of the point force = T / E')
-    const double Ts = (kfit == 3 && need_t()) ? Eprime * It[3 * a + 2] : 0.0;
+    const double Ts = (kfit >= 2 && need_t()) ? Eprime * It[3 * a + 2] : 0.0;
     tp.KI = KI, tp.KII = KII, tp.G = Gt[a], tp.kink = th, tp.T = Ts;
     tp.speed = 0.0;
     if (Gt[a] < Gc || tp.seg != 0.0) continue;
