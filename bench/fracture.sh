@@ -68,6 +68,8 @@
 #              tstress/dynamic r_c'): the hoop stress of the singular field
 #              of a tip at its speed v = c_R (1 - G_c / G), K from G at that
 #              speed (Freund's A_I, A_II), plus T
+#   SETTING-vV  SETTING with the Kalthoff-Winkler impact at V m/s (-var v0
+#              V; the deck's 16.5, the 3D deck's 30); bench/kw_speed.sh
 #   tip-tsdj-RC  tip-tsd-RC with the recommended model's fit, 'kfit j'
 #              (K's ratio from the faces' opening, T from J's ring)
 #   tip-yoffe-js  tip-yoffe-j (the recommended model) with 'tipdir segment'
@@ -163,6 +165,8 @@ vars_of() {    # setting [kalthoff|branching]
       case "${1#tip-ystep-}" in j) kf=j ;; jin) kf=j; jn=yes ;; i) kf=interaction ;; iin) kf=interaction; jn=yes ;;
         *) echo "bench/fracture.sh: unknown setting '$1' (tip-ystep-j, -jin, -i, -iin)" >&2; return 1 ;; esac
       echo "-var crit tip -var branch yoffe/step -var kfit $kf -var jin $jn -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
+    *-v[0-9]*)    # SETTING-vV: SETTING with the Kalthoff-Winkler impact at V m/s (the deck's v0)
+      echo "$(vars_of "${1%-v*}" "${2:-}") -var v0 ${1##*-v}" ;;
     tip-tsdj-*) echo "$(vars_of "tip-tsd-${1#tip-tsdj-}" | sed 's/-var kfit interaction /-var kfit j /')" ;;
     tip-yoffe-js) echo "$(vars_of tip-yoffe-j) -var tipdir segment" ;;
     tip-tsd-*) echo "$(vars_of "tip-ts-${1#tip-tsd-}" | sed 's/-var branch tstress /-var branch tstress\/dynamic /')" ;;
