@@ -46,6 +46,21 @@ def last_thermo(path):
     return rows[-1] if rows else None
 
 
+def finished_runs(out, pattern, ncol):
+    """the runs in out whose log name matches pattern (a regex on the path, with groups) and
+    that finished ("Total wall time") with a last thermo row of ncol columns or more:
+    {match groups: that row}, and the logs' names"""
+    res, logs = {}, []
+    for f in sorted(glob.glob(os.path.join(out, "*.log"))):
+        m = re.search(pattern, f)
+        t = last_thermo(f) if m else None
+        if t is None or len(t) < ncol or "Total wall time" not in open(f).read():
+            continue
+        res[m.groups()] = t
+        logs.append(os.path.basename(f))
+    return res, logs
+
+
 def report_cli(doc):
     """the report scripts' command line (--out RUNS --doc REPORT), the repository's root and
     the commit the report is written at (git describe --dirty)"""

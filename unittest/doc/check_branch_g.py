@@ -1,4 +1,4 @@
-"""bench/branch_g.py, kcheck_kink.py, kcheck_seg.py and kcheck_t.py on made-up runs (ctest bench.branch_g):
+"""bench/branch_g.py, kcheck_kink.py, kcheck_seg.py, kcheck_t.py and kcheck_3d.py on made-up runs (ctest bench.branch_g):
 
 * branch_g.py: two fake settings, one whose Kalthoff-Winkler tips stay below
   the plate's G before 45 us (a threshold exists: "yes") and one whose tips
@@ -9,6 +9,7 @@
 * kcheck_seg.py: tipdir segment's kink, and the turn that zeroes K_II / K_I
   at a second segment's end, from three fake runs on a known line;
 * kcheck_t.py: T / sigma against theory and the error's trend with dx.
+* kcheck_3d.py: K_I against Tada and 2D, T, and the mixed ratio against 2D; an unfinished run left out.
 
     check_branch_g.py --root REPO --workdir DIR
 Prints PASSED or FAILED (ctest matches PASSED).
@@ -144,6 +145,27 @@ def main():
                  "`biaxial`: |error| 0.0200, 0.0300: it does not fall steadily with dx"):
         if want not in ttxt:
             problems.append(f"kcheck_t.py: '{want}' not in its report ({p.stderr[-300:]})")
+    # kcheck_3d.py: K_I against Tada and 2D, T, and the mixed ratio against 2D, from fake
+    # relaxed runs (a run that did not finish is left out)
+    kd = os.path.join(a.workdir, "k3d")
+    os.makedirs(kd, exist_ok=True)
+    for g, mode, ki, kii, t in (("2d", "I", 130000, 0, -0.97e6), ("2d", "mixed", 140000, 147000, 0),
+                                ("p8", "I", 131300, 0, -0.96e6), ("p8", "mixed", 140000, 140000, 0)):
+        open(os.path.join(kd, f"k3-{g}-{mode}.log"), "w").write(
+            f"Step ...\n   10000 0.001 {ki} {kii} {ki} {kii} 5e-9 0.097 59 {t} {t}\nTotal wall time: 0:00:07\n")
+    open(os.path.join(kd, "k3-s4-I.log"), "w").write("Step ...\n   10000 0.001 1 0 1 0 5e-9 0.097 59 0 0\n")
+    kdoc = os.path.join(a.workdir, "kcheck-3d.md")
+    p = subprocess.run([sys.executable, os.path.join(a.root, "bench", "kcheck_3d.py"), "--out", kd,
+                        "--doc", kdoc], capture_output=True, text=True)
+    ktxt = open(kdoc).read() if p.returncode == 0 else ""
+    k0 = 1.0e6 * math.sqrt(math.pi * 0.005) * (1 - 0.025 * 0.125 ** 2 + 0.06 * 0.125 ** 4) * \
+        math.sqrt(1 / math.cos(math.pi * 0.125 / 2))
+    for want in (f"| 2D plane strain | {130000 / k0:.4f} | 1.0000 | -0.9700 | 1.0500 | 1.0000 |",
+                 f"| 3D, 8 layers, periodic faces (plane strain) | {131300 / k0:.4f} | 1.0100 | -0.9600 | "
+                 "1.0000 | 0.9524 |",
+                 "| 3D, 4 layers (4 mm), free faces | - | - | - | - | - |"):
+        if want not in ktxt:
+            problems.append(f"kcheck_3d.py: '{want}' not in its report ({p.stderr[-300:]}{ktxt[-400:]})")
     for pr in problems:
         print("problem:", pr)
     print("FAILED" if problems else "PASSED")
