@@ -70,6 +70,9 @@
 #              speed (Freund's A_I, A_II), plus T
 #   SETTING-vV  SETTING with the Kalthoff-Winkler impact at V m/s (-var v0
 #              V; the deck's 16.5, the 3D deck's 30); bench/kw_speed.sh
+#   SETTING-kr  SETTING with 'kratio running': the tips' K_II / K_I
+#              corrected for their speed (the static readings' factors of a
+#              running tip, tlsph_crack.h running_ratio_factors)
 #   tip-tsdj-RC  tip-tsd-RC with the recommended model's fit, 'kfit j'
 #              (K's ratio from the faces' opening, T from J's ring)
 #   tip-yoffe-js  tip-yoffe-j (the recommended model) with 'tipdir segment'
@@ -104,7 +107,7 @@ set -uo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(dirname "$HERE")"
 PY="${TLSPH_PYTHON:-/usr/bin/python3}"
-OUT="$HERE/out/fracture"
+OUT="${FRACTURE_OUT:-$HERE/out/fracture}"    # FRACTURE_OUT: elsewhere (exploratory runs)
 # (set but empty: none of that deck)
 KDX="${KDX-1.67 1.33 1.11 1.0 0.833 0.667 0.5}"
 BDX="${BDX-0.5 0.333}"
@@ -167,6 +170,8 @@ vars_of() {    # setting [kalthoff|branching]
       echo "-var crit tip -var branch yoffe/step -var kfit $kf -var jin $jn -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     *-v[0-9]*)    # SETTING-vV: SETTING with the Kalthoff-Winkler impact at V m/s (the deck's v0)
       echo "$(vars_of "${1%-v*}" "${2:-}") -var v0 ${1##*-v}" ;;
+    *-kr)    # SETTING-kr: SETTING with the tips' K_II / K_I read at their speed ('kratio running')
+      echo "$(vars_of "${1%-kr}" "${2:-}") -var kratio running" ;;
     tip-tsdj-*) echo "$(vars_of "tip-tsd-${1#tip-tsdj-}" | sed 's/-var kfit interaction /-var kfit j /')" ;;
     tip-yoffe-js) echo "$(vars_of tip-yoffe-j) -var tipdir segment" ;;
     tip-tsd-*) echo "$(vars_of "tip-ts-${1#tip-tsd-}" | sed 's/-var branch tstress /-var branch tstress\/dynamic /')" ;;
@@ -188,7 +193,7 @@ vars_of() {    # setting [kalthoff|branching]
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-yoffe-is tip-yoffe-iins tip-ts-RC tip-ystep-j tip-ystep-jin tip-ystep-i tip-ystep-iin tipg-j tipg-jin tipg-j-seg-N tipg-i tipg-is tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-yoffe-is tip-yoffe-iins tip-ts-RC SETTING-kr SETTING-vV tip-ystep-j tip-ystep-jin tip-ystep-i tip-ystep-iin tipg-j tipg-jin tipg-j-seg-N tipg-i tipg-is tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }

@@ -143,8 +143,8 @@ void PairTLSPHDamage::settings(int narg, char **arg)
     }
   }
   if (have_branch && !tipmode)
-    error->all(FLERR, "pair_style tlsph/damage: branch, tipdir, tipseg, kfit, jinertia, jring "
-                      "and tipparam are settings of 'criterion tip'");
+    error->all(FLERR, "pair_style tlsph/damage: branch, tipdir, tipseg, kfit, kratio, jinertia, "
+                      "jring and tipparam are settings of 'criterion tip'");
   if (crack->tstress_rule() && crack->kfit < 2)
     error->all(FLERR, "pair_style tlsph/damage: branch {} takes the T-stress from an "
                       "interaction integral over J's ring: it needs kfit j or kfit interaction",
@@ -152,6 +152,9 @@ void PairTLSPHDamage::settings(int narg, char **arg)
   if (crack->tipdir_seg && crack->kfit < 2)
     error->all(FLERR, "pair_style tlsph/damage: tipdir segment takes the T-stress from an "
                       "interaction integral over J's ring: it needs kfit j or kfit interaction");
+  if (crack->kratio_run && crack->kfit < 2)
+    error->all(FLERR, "pair_style tlsph/damage: kratio running corrects the mode ratio of tips "
+                      "whose K takes its size from the J-integral: it needs kfit j or kfit interaction");
   if (crack->jinertia && crack->kfit < 2)
     error->all(FLERR, "pair_style tlsph/damage: jinertia yes adds the inertia term to the tips' "
                       "J-integral: it needs kfit j or kfit interaction");

@@ -16,6 +16,7 @@
 #include "tlsph_math.h"
 
 #include <cmath>
+#include <complex>
 
 namespace TLSPH {
 
@@ -597,6 +598,126 @@ inline void running_k(const RunningTip &t, double kappa, double &KI, double &KII
   const double rho = KII / KI, f = std::sqrt((1.0 + rho * rho) / (AI + AII * rho * rho));
   KI *= f;
   KII *= f;
+}
+
+/* The displacement gradient H (H[i][j] = du_i/dx_j) and stress S of the
+   running tip's singular field (unit K of mode 1 or 2, shear modulus mu) at
+   (x1, x2) in the tip's frame, from Freund's potentials (1990, ch. 4): u =
+   grad phi + curl psi with phi = Re F(z_d), psi = Im G(z_s), z_j = x1 + i
+   a_j x2, F'' = a z_d^(-1/2), G'' = b z_s^(-1/2):
+     u1,1 = Re F'' + a_s Re G''         u1,2 = -a_d Im F'' - a_s^2 Im G''
+     u2,1 = -a_d Im F'' - Im G''        u2,2 = -a_d^2 Re F'' - a_s Re G''
+   traction-free faces and K fix a, b: mode I a = (1 + a_s^2) c, b = -2 a_d c;
+   mode II a = -2 i a_s c, b = i (1 + a_s^2) c, c = 1 / (mu D sqrt(2 pi)).
+   Its stress is running_tip_stress's (tested); a static tip (t.stat) gives
+   Williams's field (williams_aux). */
+inline void running_tip_gradient(const RunningTip &t, int mode, double mu, double kappa, double x1,
+                                 double x2, double H[2][2], double S[2][2])
+{
+  if (t.stat) {
+    williams_aux(mode - 1, std::hypot(x1, x2), std::atan2(x2, x1), mu, kappa, H, S);
+    return;
+  }
+  using C = std::complex<double>;
+  const double c = 1.0 / (mu * t.D * std::sqrt(2.0 * M_PI)), a2 = 1.0 + t.as * t.as;
+  const C a = mode == 1 ? C(a2 * c, 0.0) : C(0.0, -2.0 * t.as * c);
+  const C b = mode == 1 ? C(-2.0 * t.ad * c, 0.0) : C(0.0, a2 * c);
+  const C F = a / std::sqrt(C(x1, t.ad * x2)), G = b / std::sqrt(C(x1, t.as * x2));
+  H[0][0] = F.real() + t.as * G.real();
+  H[0][1] = -t.ad * F.imag() - t.as * t.as * G.imag();
+  H[1][0] = -t.ad * F.imag() - G.imag();
+  H[1][1] = -t.ad * t.ad * F.real() - t.as * G.real();
+  const double lam = mu * (3.0 - kappa) / (kappa - 1.0), tr = H[0][0] + H[1][1];
+  S[0][0] = lam * tr + 2.0 * mu * H[0][0];
+  S[1][1] = lam * tr + 2.0 * mu * H[1][1];
+  S[0][1] = S[1][0] = mu * (H[0][1] + H[1][0]);
+}
+
+/* The interaction integral on the circle r = 1 about a tip running at t
+   (the actual field: its singular field of mode ma, K = 1) with the
+   auxiliary field of mode mb of the tip tb (K = 1):
+     I = int [S^b_ij H_ij delta_1j - S_ij H^b_i1 - S^b_ij H_i1] n_j ds
+         + rho v^2 int H_i1 H^b_i1 n_1 ds   (kinetic: only with dynamic)
+   (rho v^2 = mu (v / c_s)^2), by Gauss-Legendre quadrature in the angle
+   (the integrand is smooth on [-pi, pi]; 48 points give 1e-10). With the
+   singular fields alone the integral does not depend on the radius. With tb
+   the same running tip and the kinetic term it is 2 A_m / E' for mb = ma
+   (Freund's G) and 0 across modes; with a static tb and no kinetic term it
+   is what the static domain integral of kfit interaction reads. */
+inline double running_interaction(const RunningTip &t, int ma, const RunningTip &tb, int mb, double mu,
+                                  double kappa, bool dynamic)
+{
+  // the 48 Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_48)
+  struct Rule {
+    double x[48], w[48];
+  };
+  static const Rule gl = [] {
+    Rule r{};
+    const int n = 48;
+    for (int i = 0; i < n; i++) {
+      double x = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
+      for (int it = 0; it < 100; it++) {
+        double p0 = 1.0, p1 = x;
+        for (int k = 2; k <= n; k++) {
+          const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+          p0 = p1, p1 = p2;
+        }
+        dp = n * (x * p1 - p0) / (x * x - 1.0);
+        const double dx = p1 / dp;
+        x -= dx;
+        if (std::fabs(dx) < 1.0e-16) break;
+      }
+      r.x[i] = x;
+      r.w[i] = 2.0 / ((1.0 - x * x) * dp * dp);
+    }
+    return r;
+  }();
+  const double rv2 = dynamic && !t.stat ? mu * t.bs * t.bs : 0.0;
+  double sum = 0.0;
+  for (int k = 0; k < 48; k++) {
+    const double th = M_PI * gl.x[k], w = M_PI * gl.w[k];
+    const double n[2] = {std::cos(th), std::sin(th)};
+    double H[2][2], S[2][2], Hb[2][2], Sb[2][2];
+    running_tip_gradient(t, ma, mu, kappa, n[0], n[1], H, S);
+    running_tip_gradient(tb, mb, mu, kappa, n[0], n[1], Hb, Sb);
+    double w12 = 0.0, v = 0.0, kin = 0.0;
+    for (int i = 0; i < 2; i++) {
+      kin += H[i][0] * Hb[i][0];
+      for (int j = 0; j < 2; j++) {
+        w12 += Sb[i][j] * H[i][j];
+        v += (S[i][j] * Hb[i][0] + Sb[i][j] * H[i][0]) * n[j];
+      }
+    }
+    sum += w * ((w12 + rv2 * kin) * n[0] - v);
+  }
+  return sum;
+}
+
+/* 'kratio running': what the tips' static measurements of K_II / K_I read
+   when the tip runs at t, as factors f_I, f_II of each mode (read K = f K),
+   so that the true ratio is the read one times f_I / f_II.
+   - The displacement correlation (kfit tip, offset, j): a running tip's
+     faces open by A_I K_I and slide by A_II K_II times the static jump
+     (Freund's fields on u = +-pi), f = A (freund_A), f_I / f_II = a_d / a_s.
+   - The interaction integrals with Williams's static auxiliary fields and no
+     kinetic term (kfit interaction): f_m = E' I / 2 of running_interaction
+     with a static tb, e.g. 1.22 and 1.09 at 0.6 c_R (nu = 0.3, plane strain).
+   Both read the ratio low at speed (0.87 and 0.90 of it at 0.6 c_R). */
+inline void running_ratio_factors(const RunningTip &t, double mu, double kappa, bool interaction,
+                                  double &fI, double &fII)
+{
+  if (t.stat) {
+    fI = fII = 1.0;
+    return;
+  }
+  if (!interaction) {
+    freund_A(t, kappa, fI, fII);
+    return;
+  }
+  const RunningTip st{1.0, 1.0, 0.0, 0.0, 0.0, true};
+  const double h = 4.0 * mu / (kappa + 1.0);    // E' / 2
+  fI = h * running_interaction(t, 1, st, 1, mu, kappa, false);
+  fII = h * running_interaction(t, 2, st, 2, mu, kappa, false);
 }
 
 /* The branching rule 'branch tstress': the hoop stress of the tip's

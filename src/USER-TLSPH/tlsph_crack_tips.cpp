@@ -49,6 +49,7 @@ void TLSPHCrackTips::defaults()
   jr1 = 2.0;
   jr2 = 4.0;
   jinertia = 0;
+  kratio_run = 0;
   seg = 0.0;
   branch = 0.0;
   p_sample = 1.5;
@@ -91,6 +92,15 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
     else if (strcmp(arg[iarg + 1], "no") == 0) jinertia = 0;
     else
       error->all(FLERR, "pair_style tlsph/damage: jinertia must be 'yes' or 'no', got '{}'",
+                 arg[iarg + 1]);
+    return 2;
+  }
+  if (key == "kratio") {
+    if (iarg + 1 >= narg) error->all(FLERR, "pair_style tlsph/damage: kratio needs a value");
+    if (strcmp(arg[iarg + 1], "running") == 0) kratio_run = 1;
+    else if (strcmp(arg[iarg + 1], "static") == 0) kratio_run = 0;
+    else
+      error->all(FLERR, "pair_style tlsph/damage: kratio must be 'static' or 'running', got '{}'",
                  arg[iarg + 1]);
     return 2;
   }
@@ -172,15 +182,16 @@ int TLSPHCrackTips::parse(int narg, char **arg, int iarg)
 /* ----------------------------------------------------------------------
    restart: the settings, then every tip with its path (identical on all
    ranks). tipdir and kfit share one value, tipdir + 2 kfit + 8 (tipdir
-   segment), 0 to 15 (files written before kfit read as kfit tip, before
-   tipdir segment as faces or hoop); tipmode + 2 marks the layout with the J ring after the six
+   segment) + 16 (kratio running), 0 to 31 (files written before kfit read
+   as kfit tip, before tipdir segment as faces or hoop, before kratio as
+   kratio static); tipmode + 2 marks the layout with the J ring after the six
    (files written before it have tipmode 0 or 1 there and the default ring), + 4 the ring and the
    tipparam values, + 8 those and jinertia, + 16 those and branch tstress's r_c
 ------------------------------------------------------------------------- */
 
 void TLSPHCrackTips::write_restart(FILE *fp, int tipmode)
 {
-  double w[6] = {(double) tipmode + 16.0, (double) (tipdir_hoop + 2 * kfit + 8 * tipdir_seg), seg, branch,
+  double w[6] = {(double) tipmode + 16.0, (double) (tipdir_hoop + 2 * kfit + 8 * tipdir_seg + 16 * kratio_run), seg, branch,
                  (double) ready, (double) list.size()};
   fwrite(w, sizeof(double), 6, fp);
   const double jr[9] = {jr1, jr2, p_sample, p_disc, p_hoopr, (double) p_window, p_split, (double) jinertia,
@@ -208,7 +219,7 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   else if (extra == 8) w[0] -= 8.0;
   else if (extra == 7) w[0] -= 4.0;
   else if (extra == 2) w[0] -= 2.0;
-  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 15.0 && w[1] == std::floor(w[1])) &&
+  if (!((w[0] == 0.0 || w[0] == 1.0) && (w[1] >= 0.0 && w[1] <= 31.0 && w[1] == std::floor(w[1])) &&
         w[2] >= 0.0 &&
         (w[3] == YOFFE || w[3] == YOFFE_STEP || w[3] == TSTRESS || w[3] == TSTRESS_DYNAMIC ||
          (w[3] >= 0.0 && w[3] < 2.0)) &&
@@ -220,7 +231,8 @@ int TLSPHCrackTips::read_restart(FILE *fp)
   defaults();    // what an older layout does not carry
   tipdir_hoop = static_cast<int>(w[1]) % 2;
   kfit = (static_cast<int>(w[1]) / 2) % 4;
-  tipdir_seg = static_cast<int>(w[1]) / 8;
+  tipdir_seg = (static_cast<int>(w[1]) / 8) % 2;
+  kratio_run = static_cast<int>(w[1]) / 16;
   seg = w[2];
   branch = w[3];
   ready = static_cast<int>(w[4]);
@@ -1019,10 +1031,29 @@ void TLSPHCrackTips::grow()
         : kfit == 3
         ? TLSPH::k_from_j(Jt[a], TLSPH::CrackK{It[3 * a] > 0.0 ? It[3 * a] : 0.0, It[3 * a + 1]}, Eprime)
         : TLSPH::displacement_correlation(cnt, rr, jn, jt, Eprime);
-    const double KI = K.KI, KII = K.KII;
-    const double th = TLSPH::mts_kink_angle(KI, KII);
-    const double Keq = TLSPH::mts_equivalent_K(KI, KII, th);
+    double KI = K.KI, KII = K.KII;
+    double th = TLSPH::mts_kink_angle(KI, KII);
+    double Keq = TLSPH::mts_equivalent_K(KI, KII, th);
     Gt[a] = (Keq > 0.0) ? Keq * Keq / Eprime : 0.0;
+    // kratio running: the static readings give the ratio of a running tip
+    // low (tlsph_crack.h, running_ratio_factors); the ratio corrected at
+    // the speed v = c_R (1 - G_c / G) of the G it gives, to a fixed point
+    // (the size, from J, kept). A tip below G_c stands: its ratio is read right.
+    if (kratio_run && Gt[a] >= Gc) {
+      const double kn = std::hypot(K.KI, K.KII);
+      for (int it = 0; it < 30; it++) {
+        const double v = TLSPH::freund_speed(Gt[a], Gc, cR);
+        double fI, fII;
+        TLSPH::running_ratio_factors(TLSPH::running_tip(v / cs, kappa), mu, kappa, kfit == 3, fI, fII);
+        const double kI = K.KI / fI, kII = K.KII / fII, f = kn / std::hypot(kI, kII);
+        KI = f * kI, KII = f * kII;
+        th = TLSPH::mts_kink_angle(KI, KII);
+        Keq = TLSPH::mts_equivalent_K(KI, KII, th);
+        const double G = (Keq > 0.0) ? Keq * Keq / Eprime : 0.0, dG = G - Gt[a];
+        Gt[a] = G;
+        if (!(std::fabs(dG) > 1.0e-12 * G) || G < Gc) break;
+      }
+    }
     Kt[2 * a] = KI;
     Kt[2 * a + 1] = KII;
     tht[a] = th;

@@ -100,6 +100,7 @@ class TLSPHCrackTips : protected Pointers {
                     // ratio from the interaction integrals over the same ring
   double jr1, jr2;  // kfit j, interaction: the J domain's ring, q = 1 inside r1, 0 beyond r2 [h]
   int jinertia;     // kfit j, interaction: 1 adds the inertia term of the dynamic J-integral
+  int kratio_run;   // kratio running: K_II / K_I corrected for the tip's speed (kfit j, interaction)
   double seg;       // segment length in h (0: the sampling reach)
   double branch;    // half angle of a branching [rad] (0: never), or one of the rules below
   // the branching rules (values of branch < 0; also in the restart files)

@@ -680,6 +680,79 @@ TEST(CrackTip, RunningTipKFromG)
   }
 }
 
+// the running tip's displacement gradient (Freund's potentials): its stress
+// is running_tip_stress's (Freund's closed forms, a separate derivation) at
+// every angle and speed; its dynamic interaction integral with itself is 2
+// A_m / E' (the energy release rate G = A K^2 / E' that freund_A states) and
+// 0 across modes; at rest the static integral is 2 / E' (Williams's field)
+TEST(CrackTip, RunningTipGradientAndInteraction)
+{
+  for (double nu : {0.22, 0.3}) {
+    for (bool strain : {true, false}) {
+      const double kappa = strain ? 3.0 - 4.0 * nu : (3.0 - nu) / (1.0 + nu), mu = 1.3e9;
+      const double Ep2 = 4.0 * mu / (kappa + 1.0);    // E' / 2
+      for (double vs : {0.0, 0.2, 0.5, 0.75}) {
+        const TLSPH::RunningTip t = TLSPH::running_tip(vs, kappa);
+        for (int mode : {1, 2})
+          for (double u : {-3.1, -2.0, -0.7, 0.0, 0.4, 1.5, 2.9}) {
+            const double r = 2.5e-3;
+            double H[2][2], S[2][2], s[3];
+            TLSPH::running_tip_gradient(t, mode, mu, kappa, r * std::cos(u), r * std::sin(u), H, S);
+            TLSPH::running_tip_stress(t, mode, u, s);
+            const double sc = 1.0 / std::sqrt(2.0 * PI * r);
+            EXPECT_NEAR(S[0][0], sc * s[0], 1e-9 * sc) << "v/cs " << vs << " mode " << mode << " u " << u;
+            EXPECT_NEAR(S[1][1], sc * s[1], 1e-9 * sc) << "v/cs " << vs << " mode " << mode << " u " << u;
+            EXPECT_NEAR(S[0][1], sc * s[2], 1e-9 * sc) << "v/cs " << vs << " mode " << mode << " u " << u;
+          }
+        double AI, AII;
+        TLSPH::freund_A(t, kappa, AI, AII);
+        EXPECT_NEAR(Ep2 * TLSPH::running_interaction(t, 1, t, 1, mu, kappa, true), AI, 1e-8 * AI) << vs;
+        EXPECT_NEAR(Ep2 * TLSPH::running_interaction(t, 2, t, 2, mu, kappa, true), AII, 1e-8 * AII) << vs;
+        EXPECT_NEAR(Ep2 * TLSPH::running_interaction(t, 1, t, 2, mu, kappa, true), 0.0, 1e-8) << vs;
+        EXPECT_NEAR(Ep2 * TLSPH::running_interaction(t, 2, t, 1, mu, kappa, true), 0.0, 1e-8) << vs;
+      }
+    }
+  }
+}
+
+// kratio running: the factors by which the static measurements read each
+// mode of a running tip. At rest 1; the displacement correlation's are
+// freund_A's (the faces' opening and sliding of Freund's field), whose ratio
+// is a_s / a_d; the interaction integral's (static auxiliary field, no kinetic term) grow with
+// v, and both read K_II / K_I low: below 1 and falling with v
+TEST(CrackTip, RunningRatioFactors)
+{
+  const double nu = 0.3, kappa = 3.0 - 4.0 * nu, mu = 1.0;
+  for (bool inter : {false, true}) {
+    double fI, fII;
+    TLSPH::running_ratio_factors(TLSPH::running_tip(0.0, kappa), mu, kappa, inter, fI, fII);
+    EXPECT_EQ(fI, 1.0);
+    EXPECT_EQ(fII, 1.0);
+    double prev = 1.0;
+    for (double vs : {0.1, 0.3, 0.5, 0.7}) {
+      const TLSPH::RunningTip t = TLSPH::running_tip(vs, kappa);
+      TLSPH::running_ratio_factors(t, mu, kappa, inter, fI, fII);
+      EXPECT_GT(fI, 1.0) << vs;
+      EXPECT_GT(fII, 1.0) << vs;
+      EXPECT_LT(fII / fI, prev) << vs;
+      prev = fII / fI;
+      if (!inter) EXPECT_NEAR(fII / fI, t.as / t.ad, 1e-12) << vs;
+    }
+    // at 0.6 c_R (c_R = 0.927413 c_s at nu = 0.3), the static readings of the
+    // ratio: a_s / a_d = 0.8703 for the correlation; 1.0943 / 1.2213 =
+    // 0.8960 for the interaction integral (bench/kratio notes: an
+    // independent quadrature of the same integral, 4000 points)
+    const TLSPH::RunningTip t = TLSPH::running_tip(0.6 * 0.927413, kappa);
+    TLSPH::running_ratio_factors(t, mu, kappa, inter, fI, fII);
+    if (inter) {
+      EXPECT_NEAR(fI, 1.2213, 2e-4);
+      EXPECT_NEAR(fII, 1.0943, 2e-4);
+    } else {
+      EXPECT_NEAR(fII / fI, 0.8703, 2e-4);
+    }
+  }
+}
+
 // with the Williams series's second term, a stress T along the crack's line:
 // the point force's interaction integral gives T, sign included, whatever
 // K_I, K_II, the crack's direction and the ring (the K fields give it

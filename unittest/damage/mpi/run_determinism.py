@@ -162,6 +162,8 @@ def main():
     ap.add_argument("--jinertia", action="store_true",
                     help="with --kfit j or interaction: 'jinertia yes' (the inertia term of J: "
                          "its force part summed at the end of each step and at a run's set-up)")
+    ap.add_argument("--kratio", default="static",
+                    help="with --kfit j or interaction: pair_style tlsph/damage kratio (static or running)")
     ap.add_argument("--tipdir", default="faces",
                     help="with --crit tip: pair_style tlsph/damage tipdir (faces, hoop or segment)")
     ap.add_argument("--branch", default="yoffe",
@@ -186,6 +188,8 @@ def main():
     fam += ["-var", "crit", args.crit, "-var", "kfit", args.kfit, "-var", "gc", repr(args.gc)]
     if args.jinertia:
         fam += ["-var", "jin", "yes"]
+    if args.kratio != "static":
+        fam += ["-var", "kratio", args.kratio]
     if args.tipdir != "faces":
         fam += ["-var", "tipdir", args.tipdir]
     if args.branch != "yoffe":
