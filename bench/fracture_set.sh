@@ -7,7 +7,8 @@
 # each setting's log in bench/out/NAME-<k>.txt.
 #   bash bench/fracture_set.sh NAME "TITLE" SETTING...
 # (bench/kfit_interaction.sh, kfit_inertia.sh, branch_step.sh, tipdir_segment.sh,
-# tstress_scan.sh, tstress_dynamic_scan.sh, kfit_j_tstress.sh and kw_speed.sh call it)
+# tstress_scan.sh, tstress_dynamic_scan.sh, kfit_j_tstress.sh, kw_speed.sh and
+# kratio_running.sh call it)
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 if [ $# -lt 3 ]; then
