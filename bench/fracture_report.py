@@ -97,16 +97,17 @@ def kalthoff_table(rows):
 
 def branching_table(rows):
     out = ["| dx [mm] | particles | initiation [us] | branching [us] | branches at the end | "
-           "short side branches (max) | right edge reached [us] | branches end at (x, y) [mm] | "
-           "peak tip speed [m/s] | wall [s] |",
-           "|---|---:|---:|---:|---:|---:|---:|---|---:|---:|"]
+           "short side branches (max) | branch point [mm] | right edge reached [us] | "
+           "branches end at (x, y) [mm], angle [deg] | peak tip speed [m/s] | wall [s] |",
+           "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"]
     for mm, j, prefix in rows:
         c = list(j["cracks"].values())[0]
         n, wall = log_info(prefix)
         edge = (c.get("edge_reached_time") or {}).get("xmax")
         out.append(f"| {mm:g} | {n or '-'} | {fmt(c.get('initiation_time'), scale=1e6)} | "
                    f"{fmt(c.get('branching_time'), scale=1e6)} | {c.get('branches_final', '-')} | "
-                   f"{c.get('side_branches_max', '-')} | {fmt(edge, scale=1e6)} | {branch_ends(c)} | "
+                   f"{c.get('side_branches_max', '-')} | {fmt(c.get('branch_point_s'), scale=1e3)} | "
+                   f"{fmt(edge, scale=1e6)} | {branch_ends(c)} | "
                    f"{fmt(c.get('speed_max'), '{:.0f}')} | {wall if wall is not None else '-'} |")
     return out
 
@@ -114,12 +115,16 @@ def branching_table(rows):
 def branch_ends(c):
     """where the branches at the end of the run end: each one's tip (x, y) in
     mm, lowest y first (the glass plate is 100 x 40 mm: its right corners are
-    (100, 0) and (100, 40)), with the edges it touches"""
+    (100, 0) and (100, 40)), with the edges it touches, and its angle to +x
+    (a line fitted over the whole branch, tools/crack_measure.py). The
+    branch point (the column before) is the crack's arc length from the
+    pre-crack's tip to where it split."""
     ends = sorted(c.get("branches_at_end") or [], key=lambda b: b["tip"][1])
     if not ends:
         return "-"
     return "; ".join(f"{b['tip'][0] * 1e3:.1f}, {b['tip'][1] * 1e3:.1f}"
-                     + (f" ({'+'.join(b['edges'])})" if b.get("edges") else "") for b in ends)
+                     + (f" ({'+'.join(b['edges'])})" if b.get("edges") else "")
+                     + (f", {b['angle_deg']:+.1f}" if b.get("angle_deg") is not None else "") for b in ends)
 
 
 def kalthoff_verdict(rows):

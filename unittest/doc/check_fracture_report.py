@@ -29,8 +29,10 @@ def branching(t, nfin=2, side=0, two=80e-6):
     return {"cracks": {"crack": dict(initiation_time=13e-6, branching_time=t, branches_final=nfin,
                                      side_branches_max=side, two_branches_at_target_time=two,
                                      speed_max=1300.0, edge_reached_time={"xmax": 80e-6},
-                                     branches_at_end=[{"tip": [0.0998, 0.0372], "edges": ["xmax"]},
-                                                      {"tip": [0.0998, 0.0028], "edges": ["xmax", "ymin"]}])}}
+                                     branch_point_s=0.0135,
+                                     branches_at_end=[{"tip": [0.0998, 0.0372], "edges": ["xmax"], "angle_deg": 28.46},
+                                                      {"tip": [0.0998, 0.0028], "edges": ["xmax", "ymin"],
+                                                       "angle_deg": -28.46}])}}
 
 
 def write(d, name, j, code):
@@ -80,8 +82,8 @@ def main():
         ("bad: 3 branches, a side branch, not both at the right edge",
          "3 branches at the end at 0.333 mm" in bad and "1 side branches at 0.333 mm" in bad
          and "not two branches at the right edge at 0.333 mm" in bad),
-        ("branching table: where the branches end, lowest first, with their edges",
-         "| 99.8, 2.8 (xmax+ymin); 99.8, 37.2 (xmax) |" in txt),
+        ("branching table: the branch point, where the branches end (lowest first, with their edges) "
+         "and their angles", "| 13.5 | 80.0 | 99.8, 2.8 (xmax+ymin), -28.5; 99.8, 37.2 (xmax), +28.5 |" in txt),
         ("header: the runs' code and the acceptance source",
          "abc1234 fake (6 runs)" in txt and "examples/common/acceptance.py" in txt
          and "between 25 and 45 us" in txt),
