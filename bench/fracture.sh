@@ -85,8 +85,10 @@
 #   tipc-NAME-VALUE  tip-yoffe with one constant of the tip model set to
 #              VALUE (NAME: seg = tipseg, or sample, disc, hoopr, window,
 #              split = pair_style tlsph/damage tipparam NAME); bench/tipconst.sh
-#   tipjc-NAME-VALUE  the same for tip-yoffe-j (the recommended model,
-#              kfit j); bench/tipconst.sh with KFIT=j
+#   tipjc-NAME-VALUE  the same for tip-yoffe-j (kfit j, the recommended
+#              model from e469aee to c7dc05f); bench/tipconst.sh with KFIT=j
+#   tipjkc-NAME-VALUE  the same for tip-yoffe-j-kr (the recommended model
+#              since c7dc05f); bench/tipconst.sh with KFIT=jkr
 #   tip-nobranch  the same without branching
 #   tipg-j     tip-yoffe-j without branching, the tips' G/G_c at every step
 #              into <case>.tips (-var tips 1): bench/branch_g.sh
@@ -151,10 +153,11 @@ vars_of() {    # setting [kalthoff|branching]
     tip) echo "-var crit tip -var branch 15 -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-yoffe) echo "-var crit tip -var branch yoffe -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
     tip-yoffe-offset) echo "-var crit tip -var branch yoffe -var kfit offset -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1" ;;
-    tipc-*|tipjc-*)    # tipc-NAME-VALUE, tipjc-NAME-VALUE: tip-yoffe, tip-yoffe-j with one constant changed
+    tipc-*|tipjc-*|tipjkc-*)    # tipc-NAME-VALUE, tipjc-, tipjkc-: tip-yoffe, tip-yoffe-j, tip-yoffe-j-kr with one constant changed
       local pre nm val kf=""
       IFS=- read -r pre nm val <<< "$1"
       [ "$pre" = tipjc ] && kf="-var kfit j "
+      [ "$pre" = tipjkc ] && kf="-var kfit j -var kratio running "
       case "$nm" in
         seg) echo "-var crit tip -var branch yoffe ${kf}-var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1 -var tipseg $val" ;;
         sample|disc|hoopr|window|split) echo "-var crit tip -var branch yoffe ${kf}-var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 -var phic 0.65 -var eps 0.1 -var t$nm $val" ;;
@@ -193,7 +196,7 @@ vars_of() {    # setting [kalthoff|branching]
       local a
       IFS=- read -r _ a[0] a[1] a[2] a[3] a[4] <<< "$1"
       echo "-var alpha ${a[0]} -var alpha_d ${a[1]} -var phic ${a[2]} -var eps ${a[3]} -var gamma ${a[4]}" ;;
-    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-yoffe-is tip-yoffe-iins tip-ts-RC SETTING-kr SETTING-vV tip-ystep-j tip-ystep-jin tip-ystep-i tip-ystep-iin tipg-j tipg-jin tipg-j-seg-N tipg-i tipg-is tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
+    *) echo "bench/fracture.sh: unknown setting '$1' (allowed: thesis calibrated h2-calibrated h2 gamma1 conservative family4 common kcoef linear tip tip-yoffe tip-yoffe-offset tip-yoffe-j tip-yoffe-jin tip-yoffe-i tip-yoffe-iin tip-yoffe-is tip-yoffe-iins tip-ts-RC SETTING-kr SETTING-vV tip-ystep-j tip-ystep-jin tip-ystep-i tip-ystep-iin tipg-j tipg-jin tipg-j-seg-N tipg-i tipg-is tip-nobranch tip-thesis tip-hoop tipc-NAME-VALUE tipjc-NAME-VALUE tipjkc-NAME-VALUE load2 load-X scan-A-AD-PHIC-EPS-G)" >&2
        return 1 ;;
   esac
 }

@@ -17,17 +17,23 @@
 # at KDX (default 1 mm), the crack-branching plate at BDX (0.5 mm), and the
 # pure-shear strip of bench/speedlaw.sh at dx = 0.5 mm, G0 = 1.5 and 2 G_c.
 # Writes bench/tipconst.md (bench/fracture_report.py, then the strip's table).
-# KFIT=j: the same around the recommended model with K from the domain
-# J-integral (setting tip-yoffe-j, kfit j on the strip too), into
-# bench/tipconst-j.md.
+# KFIT=j: the same around the model with K from the domain J-integral
+# (setting tip-yoffe-j, kfit j on the strip too), into bench/tipconst-j.md;
+# KFIT=jkr: around the recommended model, that with kratio running (setting
+# tip-yoffe-j-kr), into bench/tipconst-jkr.md.
 #   bash bench/tipconst.sh          (LMP_TLSPH= another binary)
-#   KFIT=j bash bench/tipconst.sh
+#   KFIT=j bash bench/tipconst.sh          KFIT=jkr bash bench/tipconst.sh
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 LMP="${LMP_TLSPH:-$HERE/../build/lmp_tlsph}"
 export LMP_TLSPH="$LMP"
 KFIT="${KFIT-tip}"
-if [ "$KFIT" = j ]; then P=tipjc BASE=tip-yoffe-j DOC=tipconst-j SUF=", KFIT=j"; else P=tipc BASE=tip-yoffe DOC=tipconst SUF=""; fi
+KR=()
+if [ "$KFIT" = jkr ]; then
+  # the recommended model since c7dc05f: kfit j with kratio running (the strip runs in mode I,
+  # where kratio changes nothing, but it is passed all the same)
+  P=tipjkc BASE=tip-yoffe-j-kr DOC=tipconst-jkr SUF=", KFIT=jkr" KFIT=j KR=(-var kratio running)
+elif [ "$KFIT" = j ]; then P=tipjc BASE=tip-yoffe-j DOC=tipconst-j SUF=", KFIT=j"; else P=tipc BASE=tip-yoffe DOC=tipconst SUF=""; fi
 SETTINGS="$P-seg-2.25 $P-seg-9 $P-sample-0.75 $P-sample-3 $P-disc-0.75 $P-disc-3
   $P-hoopr-1 $P-hoopr-4 $P-window-33 $P-window-80 $P-split-0.5 $P-split-2"
 export KDX="${KDX-1.0}" BDX="${BDX-0.5}" NO_REPORT=1
@@ -53,7 +59,7 @@ strip() {    # tag extra-vars...
   for r in 1.5 2.0; do
     (cd "$OUT" && TLSPH_TIP_TRACE=1 "$LMP" -in "$HERE/in.toughness" -var dx 0.0005 -var crit tip \
       -var G0 "$(python3 -c "print(3.0 * $r)")" -var alpha 0.09 -var alpha_d 3.1 -var gamma 0.0 \
-      -var phic 0.65 -var eps 0.1 -var kfit "$KFIT" "$@" -var out "$tag-$r" -log "$tag-$r.log" -screen none > /dev/null)
+      -var phic 0.65 -var eps 0.1 -var kfit "$KFIT" "${KR[@]}" "$@" -var out "$tag-$r" -log "$tag-$r.log" -screen none > /dev/null)
   done
 }
 strip $BASE
