@@ -127,14 +127,14 @@ SCANS="scan-0.03-0.4-0.5-0.5-1.0 scan-0.03-0.4-0.5-0.5-0.0 scan-0.03-0.4-0.65-0.
 if [ "${settings[0]}" = all ]; then
   # shellcheck disable=SC2086
   {
-    NO_REPORT=1 bash "$0" thesis h2 common calibrated tip-yoffe-j tip-yoffe-i tip-yoffe tip tip-nobranch tip-thesis
+    NO_REPORT=1 bash "$0" thesis h2 common calibrated tip-yoffe-j-kr tip-yoffe-j tip-yoffe-i tip-yoffe tip tip-nobranch tip-thesis
     KDX="1.67 1.0" BDX="0.5" NO_REPORT=1 bash "$0" tip-hoop
     KDX="1.67 1.0" NO_REPORT=1 bash "$0" family4 linear h2-calibrated
     KDX="" NO_REPORT=1 bash "$0" load2 load-1.25 load-1.5 load-1.75
     KDX="1.0" BDX="0.5" NO_REPORT=1 bash "$0" $SCANS
   }
   # shellcheck disable=SC2206
-  settings=(thesis h2 common calibrated tip-yoffe-j tip-yoffe-i tip-yoffe tip tip-nobranch tip-thesis tip-hoop family4 linear h2-calibrated load2 load-1.25 load-1.5 load-1.75 $SCANS)
+  settings=(thesis h2 common calibrated tip-yoffe-j-kr tip-yoffe-j tip-yoffe-i tip-yoffe tip tip-nobranch tip-thesis tip-hoop family4 linear h2-calibrated load2 load-1.25 load-1.5 load-1.75 $SCANS)
   KDX="" BDX=""
 fi
 
@@ -240,5 +240,5 @@ for s in "${settings[@]}"; do
   for mm in $BDX; do run_deck crack-branching in.crack-branching "$s" "$mm" -var tend 90e-6 -var model thesis $vb; done
 done
 [ -n "${NO_REPORT:-}" ] && exit 0
-"$PY" "$HERE/fracture_report.py" --out "$OUT" --doc "$ROOT/doc/fracture-convergence.md" --kept tip-yoffe-j \
+"$PY" "$HERE/fracture_report.py" --out "$OUT" --doc "$ROOT/doc/fracture-convergence.md" --kept tip-yoffe-j-kr \
   --notes "$HERE/fracture-notes.md" "${settings[@]}"
