@@ -8,7 +8,8 @@
 # (tip-grow, SIMD step); and criterion tip with kfit j (the recommended
 # model: a domain J-integral per tip and step) at 1 MPa and at 16 MPa, where
 # most of its tips grow (tipj, tipj-grow; its G is about half kfit tip's, so
-# at 8 MPa none grows in the 300 steps). Each round opens and closes with
+# at 8 MPa none grows in the 300 steps), and the same with kratio running (the
+# recommended model since c7dc05f: tipjkr, tipjkr-grow). Each round opens and closes with
 # tlsph's SIMD step: the last column divides every run by the mean of its
 # own round's two, the median over the rounds (the shared machine's speed
 # drifts between rounds by more than the tips cost). Then the tips' own work,
@@ -22,15 +23,17 @@ OUT="$HERE/out/manytips"
 mkdir -p "$OUT"
 : > "$OUT/times.txt"
 for r in $(seq 1 "${ROUNDS:-7}"); do
-  for m in tlsph tlsph-scalar tension tension-scalar tip tip-scalar tip-grow tipj tipj-grow tlsph-end; do
+  for m in tlsph tlsph-scalar tension tension-scalar tip tip-scalar tip-grow tipj tipj-grow tipjkr tipjkr-grow tlsph-end; do
     model=${m%-scalar}
     simd=(); [ "$m" != "$model" ] && simd=(env TLSPH_SIMD=no)
     model=${model%-end}
-    load=1e6 kfit=tip
+    load=1e6 kfit=tip kratio=static
     [ "$m" = tip-grow ] && model=tip load=8e6
     [ "$m" = tipj ] && model=tip kfit=j
     [ "$m" = tipj-grow ] && model=tip kfit=j load=16e6
-    "${simd[@]}" "$LMP" -in "$HERE/in.manytips" -var model "$model" -var load "$load" -var kfit "$kfit" \
+    [ "$m" = tipjkr ] && model=tip kfit=j kratio=running
+    [ "$m" = tipjkr-grow ] && model=tip kfit=j kratio=running load=16e6
+    "${simd[@]}" "$LMP" -in "$HERE/in.manytips" -var model "$model" -var load "$load" -var kfit "$kfit" -var kratio "$kratio" \
       -log "$OUT/$m-$r.log" -screen none > /dev/null
     echo "$m $(grep '^Loop time' "$OUT/$m-$r.log" | tail -1 | awk '{print $4}')" >> "$OUT/times.txt"
   done
@@ -73,8 +76,10 @@ for m in ("tlsph", "tlsph-scalar", "tension", "tension-scalar", "tip", "tip-scal
         names[base], "simd no (scalar)" if scalar else "SIMD step", med[m], low[m], med[m] / med["tlsph" + suf],
         med[m] / med["tlsph"], med[m] / med["tension" + suf], low[m] / low["tlsph"], rr[m]))
 for m, label, mpa in (("tip-grow", "tlsph/damage criterion tip branch yoffe", 8),
-                      ("tipj", "tlsph/damage criterion tip branch yoffe kfit j (the recommended model)", 1),
-                      ("tipj-grow", "tlsph/damage criterion tip branch yoffe kfit j", 16)):
+                      ("tipj", "tlsph/damage criterion tip branch yoffe kfit j", 1),
+                      ("tipj-grow", "tlsph/damage criterion tip branch yoffe kfit j", 16),
+                      ("tipjkr", "tlsph/damage criterion tip branch yoffe kfit j kratio running (the recommended model)", 1),
+                      ("tipjkr-grow", "tlsph/damage criterion tip branch yoffe kfit j kratio running", 16)):
     g = open(out + "/" + m + "-1.log").read()
     if m.endswith("grow"):
         label += ", %d MPa: %d tips grow, %d branch, %d stop at another crack, %d leave the body (round 1)" % (
@@ -92,8 +97,10 @@ rows = []
 for m, label in (("tip", "criterion tip branch yoffe (kfit tip), 1 MPa, standing"),
                  ("tip-scalar", "the same, simd no (scalar)"),
                  ("tip-grow", "the same, 8 MPa, growing"),
-                 ("tipj", "criterion tip branch yoffe kfit j (the recommended model), 1 MPa, standing"),
-                 ("tipj-grow", "the same, 16 MPa, growing")):
+                 ("tipj", "criterion tip branch yoffe kfit j, 1 MPa, standing"),
+                 ("tipj-grow", "the same, 16 MPa, growing"),
+                 ("tipjkr", "criterion tip branch yoffe kfit j kratio running (the recommended model), 1 MPa, standing"),
+                 ("tipjkr-grow", "the same, 16 MPa, growing")):
     sh = []
     for r in range(1, len(t[m]) + 1):
         g = re.search(r"crack tips' work ([\d.eE+-]+) s of the loop's ([\d.eE+-]+) s", open("%s/%s-%d.log" % (out, m, r)).read())
