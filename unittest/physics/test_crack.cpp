@@ -740,8 +740,9 @@ TEST(CrackTip, RunningRatioFactors)
     }
     // at 0.6 c_R (c_R = 0.927413 c_s at nu = 0.3), the static readings of the
     // ratio: a_s / a_d = 0.8703 for the correlation; 1.0943 / 1.2213 =
-    // 0.8960 for the interaction integral (bench/kratio notes: an
-    // independent quadrature of the same integral, 4000 points)
+    // 0.8960 for the interaction integral (bench/running_field_quadrature.py:
+    // an independent build of the field, its coefficients solved from the
+    // faces' and K's conditions, and the midpoint rule over 4000 angles)
     const TLSPH::RunningTip t = TLSPH::running_tip(0.6 * 0.927413, kappa);
     TLSPH::running_ratio_factors(t, mu, kappa, inter, fI, fII);
     if (inter) {
